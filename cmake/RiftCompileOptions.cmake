@@ -1,0 +1,19 @@
+# Flags shared by every Rift target, carried by an interface target so third-party code is unaffected.
+add_library(rift_options INTERFACE)
+target_compile_options(rift_options INTERFACE -Wall -Wextra -Wno-unused-parameter)
+if(RIFT_NATIVE)
+  target_compile_options(rift_options INTERFACE -march=native)
+endif()
+if(RIFT_SANITIZE)
+  target_compile_options(rift_options INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                                -fno-sanitize-recover=undefined)
+  target_link_options(rift_options INTERFACE -fsanitize=address,undefined)
+endif()
+# Eigen must not spawn its own threads; TBB owns parallelism.
+target_compile_definitions(rift_options INTERFACE EIGEN_DONT_PARALLELIZE
+  $<$<BOOL:${RIFT_SANITIZE}>:RIFT_SANITIZED>)
+
+find_program(CCACHE_PROGRAM ccache)
+if(CCACHE_PROGRAM)
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CCACHE_PROGRAM})
+endif()

@@ -1,0 +1,148 @@
+#pragma once
+// Entity-component storage: one Table per entity kind (solid node, tet, joint, contact pair, ...),
+// each a set of structure-of-arrays columns with dense row indices. A column holds `components`
+// values per row, interleaved (x0 y0 z0 x1 y1 z1 ...), in one aligned allocation; kernels see spans.
+// Columns are created at set-up; rows change only through the table (resize / swap-remove), which the
+// schedule grants to topology-changing systems alone.
+#include <complex>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/core/aligned_buffer.hpp"
+#include "engine/core/error.hpp"
+
+namespace rift {
+
+enum class ElementType : uint8_t { f64, f32, i64, i32, u32, u8 };
+
+size_t element_size(ElementType type);
+const char* element_type_name(ElementType type);
+
+template <class T>
+constexpr ElementType element_type_of();
+template <> constexpr ElementType element_type_of<double>() { return ElementType::f64; }
+template <> constexpr ElementType element_type_of<float>() { return ElementType::f32; }
+template <> constexpr ElementType element_type_of<int64_t>() { return ElementType::i64; }
+template <> constexpr ElementType element_type_of<int32_t>() { return ElementType::i32; }
+template <> constexpr ElementType element_type_of<uint32_t>() { return ElementType::u32; }
+template <> constexpr ElementType element_type_of<uint8_t>() { return ElementType::u8; }
+
+class Column {
+ public:
+  Column(std::string table, std::string name, ElementType type, int components)
+      : table_(std::move(table)), name_(std::move(name)), type_(type), components_(components) {}
+
+  const std::string& table() const { return table_; }
+  const std::string& name() const { return name_; }
+  std::string key() const { return table_ + "." + name_; }  // how systems name it: "solid_node.x"
+  ElementType type() const { return type_; }
+  int components() const { return components_; }
+  size_t rows() const { return rows_; }
+  size_t value_count() const { return rows_ * static_cast<size_t>(components_); }
+  size_t bytes() const { return buffer_.size(); }
+  std::byte* data() { return buffer_.data(); }
+  const std::byte* data() const { return buffer_.data(); }
+
+  // All values of the column, rows x components, row-major.
+  template <class T>
+  std::span<T> values() {
+    check_type<T>();
+    return {reinterpret_cast<T*>(buffer_.data()), value_count()};
+  }
+  template <class T>
+  std::span<const T> values() const {
+    check_type<T>();
+    return {reinterpret_cast<const T*>(buffer_.data()), value_count()};
+  }
+
+  void resize(size_t rows) {
+    rows_ = rows;
+    buffer_.resize(rows * components_ * element_size(type_));
+  }
+  void reserve(size_t rows) { buffer_.reserve(rows * components_ * element_size(type_)); }
+  // Moves row `from` onto row `to` (used by swap-remove).
+  void move_row(size_t from, size_t to);
+
+ private:
+  template <class T>
+  void check_type() const {
+    if (element_type_of<T>() != type_)
+      throw Error("column " + key() + " holds " + element_type_name(type_) + ", accessed as " +
+                  element_type_name(element_type_of<T>()));
+  }
+
+  std::string table_;
+  std::string name_;
+  ElementType type_;
+  int components_;
+  size_t rows_ = 0;
+  AlignedBuffer buffer_;
+};
+
+class Table {
+ public:
+  explicit Table(std::string name) : name_(std::move(name)) {}
+  Table(const Table&) = delete;
+  Table& operator=(const Table&) = delete;
+
+  const std::string& name() const { return name_; }
+  size_t size() const { return rows_; }
+
+  // Adds a column sized to the current row count; names are unique within a table.
+  Column& add_column(std::string name, ElementType type, int components = 1);
+  template <class T>
+  Column& add(std::string name, int components = 1) {
+    return add_column(std::move(name), element_type_of<T>(), components);
+  }
+
+  bool has(std::string_view column) const { return find(column) != nullptr; }
+  Column& column(std::string_view name);
+  const Column& column(std::string_view name) const;
+  template <class T>
+  std::span<T> span(std::string_view name) {
+    return column(name).values<T>();
+  }
+  template <class T>
+  std::span<const T> span(std::string_view name) const {
+    return column(name).values<T>();
+  }
+
+  std::span<const std::unique_ptr<Column>> columns() const { return columns_; }
+
+  void resize(size_t rows);
+  void reserve(size_t rows);
+  // Removes row `row` by moving the last row into its place; returns the index that moved (or
+  // `row` itself when it was last). Callers that keep handles update them (see HandleMap).
+  size_t swap_remove(size_t row);
+
+ private:
+  Column* find(std::string_view name) const;
+
+  std::string name_;
+  size_t rows_ = 0;
+  std::vector<std::unique_ptr<Column>> columns_;  // unique_ptr: column addresses survive add_column
+};
+
+// All tables of a run. Table addresses are stable for the life of the store.
+class Store {
+ public:
+  Table& add_table(std::string name);
+  bool has(std::string_view table) const { return find(table) != nullptr; }
+  Table& table(std::string_view name);
+  const Table& table(std::string_view name) const;
+  std::span<const std::unique_ptr<Table>> tables() const { return tables_; }
+
+  // "table.column" lookup, as systems declare access.
+  Column& column(std::string_view key);
+  const Column& column(std::string_view key) const;
+
+ private:
+  Table* find(std::string_view name) const;
+  std::vector<std::unique_ptr<Table>> tables_;
+};
+
+}  // namespace rift

@@ -1,2 +1,45 @@
-// rift: command-line entry point. See engine/cli/commands.cpp for the subcommands.
-int main() { return 0; }
+// rift: command-line entry point. The subcommands live in engine/cli/commands.cpp.
+#include <CLI/CLI.hpp>
+
+#include "engine/cli/commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace rift::cli;
+  CLI::App app{"Rift: fluid-driven fracture in rock (FEMDEM solid, implicit fluid).", "rift"};
+  app.require_subcommand(1);
+
+  RunArgs run_args;
+  auto* run_cmd = app.add_subcommand("run", "Run a scene (the built-in default scene when none is given)");
+  run_cmd->add_option("scene", run_args.scene.scene, "scene file (YAML)");
+  run_cmd->add_option("--out,-o", run_args.out_dir, "output folder (default rift-out/<scene name>)");
+  run_cmd->add_option("--set", run_args.scene.overrides, "override a scene value: key.path=value (repeatable)");
+  run_cmd->add_option("--threads,-j", run_args.threads, "worker threads")->check(CLI::Range(1, 1024));
+  run_cmd->add_option("--restart", run_args.restart, "continue from a checkpoint: 'latest'");
+  run_cmd->add_option("--stop-after", run_args.stop_after, "stop after this step, writing a checkpoint");
+  run_cmd->add_flag("--quiet,-q", run_args.quiet, "only warnings and errors");
+
+  SceneArgs check_args;
+  auto* check_cmd = app.add_subcommand("check", "Validate a scene and print it fully resolved");
+  check_cmd->add_option("scene", check_args.scene, "scene file (YAML)");
+  check_cmd->add_option("--set", check_args.overrides, "override a scene value: key.path=value (repeatable)");
+
+  auto* info_cmd = app.add_subcommand("info", "Versions of Rift and its libraries, build flags");
+
+  SceneArgs graph_args;
+  int graph_threads = 1;
+  auto* graph_cmd = app.add_subcommand("graph", "Print the step's task graph as Graphviz DOT");
+  graph_cmd->add_option("scene", graph_args.scene, "scene file (YAML)");
+  graph_cmd->add_option("--set", graph_args.overrides, "override a scene value (repeatable)");
+  graph_cmd->add_option("--threads,-j", graph_threads, "worker threads")->check(CLI::Range(1, 1024));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (*run_cmd) return run(run_args);
+  if (*check_cmd) return check(check_args);
+  if (*info_cmd) return info();
+  if (*graph_cmd) return graph(graph_args, graph_threads);
+  return 2;
+}

@@ -1,0 +1,136 @@
+#include "engine/cli/commands.hpp"
+
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include <CGAL/version.h>
+#include <H5public.h>
+#include <metis.h>
+#include <oneapi/tbb/version.h>
+#include <spdlog/spdlog.h>
+#include <yaml-cpp/yaml.h>
+
+#include <CLI/Version.hpp>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/scene/load_scene.hpp"
+#include "engine/simulation.hpp"
+#include "rift/build_info.hpp"
+#include "rift/default_scene.hpp"
+
+namespace rift::cli {
+
+namespace {
+
+// Reads the scene (or the built-in default); prints every diagnostic and returns nullopt on errors.
+std::optional<Scene> read_scene(const SceneArgs& args) {
+  SceneLoadResult r = args.scene.empty()
+                          ? read_scene_text(default_scene_yaml, default_scene_name, ".", args.overrides)
+                          : read_scene_file(args.scene, args.overrides);
+  if (!r.errors.empty()) {
+    for (const auto& d : r.errors) std::cerr << d.format() << "\n";
+    std::cerr << r.errors.size() << " error(s) in " << (args.scene.empty() ? default_scene_name : args.scene)
+              << "; nothing was run or written.\n";
+    return std::nullopt;
+  }
+  return std::move(r.scene);
+}
+
+void on_signal(int) {
+  Simulation::interrupt_flag().store(true);
+  // A second signal ends the process at once.
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+}  // namespace
+
+int run(const RunArgs& args) {
+  init_logging(false, args.quiet);
+  auto scene = read_scene(args.scene);
+  if (!scene) return 2;
+  RunOptions options;
+  options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / scene->name : args.out_dir;
+  options.threads = args.threads;
+  options.restart_latest = args.restart == "latest";
+  options.progress = !args.quiet;
+  if (args.stop_after) options.stop_after_step = *args.stop_after;
+  if (!args.restart.empty() && args.restart != "latest") {
+    std::cerr << "--restart: expected 'latest', found '" << args.restart << "'\n";
+    return 2;
+  }
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = std::make_unique<Simulation>(std::move(*scene), options);
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    const RunResult r = sim->run();
+    std::cout << "output: " << options.out_dir.string() << "/rift.xdmf (open in ParaView), summary.json, "
+              << "timeseries.csv\n";
+    return r.stop_reason == "signal" ? 130 : 0;
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}
+
+int check(const SceneArgs& args) {
+  init_logging(false, true);
+  auto scene = read_scene(args);
+  if (!scene) return 2;
+  std::cout << "# " << (args.scene.empty() ? default_scene_name : args.scene) << ": valid; resolved scene, hash "
+            << scene->hash << "\n"
+            << scene->resolved_yaml << "\n";
+  return 0;
+}
+
+int info() {
+  std::cout << "Rift " << build::version << "\n"
+            << "build: " << build::build_type << ", " << build::compiler << ", native ISA: " << (build::native ? "yes" : "no")
+            << ", sanitizers: " << (build::sanitized ? "yes" : "no") << "\n"
+            << "flags: " << build::cxx_flags << "\n";
+  unsigned h5maj, h5min, h5rel;
+  H5get_libversion(&h5maj, &h5min, &h5rel);
+  std::printf("libraries:\n");
+  std::printf("  Eigen       %d.%d.%d\n", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION);
+  std::printf("  oneTBB      %s (runtime interface %d)\n", TBB_VERSION_STRING, TBB_runtime_interface_version());
+  std::printf("  HDF5        %u.%u.%u\n", h5maj, h5min, h5rel);
+  std::printf("  METIS       %d.%d.%d\n", METIS_VER_MAJOR, METIS_VER_MINOR, METIS_VER_SUBMINOR);
+  std::printf("  CGAL        %s\n", CGAL_VERSION_STR);
+  std::printf("  yaml-cpp    %s\n", RIFT_YAML_CPP_VERSION);
+  std::printf("  nlohmann    %d.%d.%d\n", NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
+              NLOHMANN_JSON_VERSION_PATCH);
+  std::printf("  spdlog      %d.%d.%d\n", SPDLOG_VER_MAJOR, SPDLOG_VER_MINOR, SPDLOG_VER_PATCH);
+  std::printf("  fmt         %d\n", FMT_VERSION);
+  std::printf("  CLI11       %s\n", CLI11_VERSION);
+  return 0;
+}
+
+int graph(const SceneArgs& args, int threads) {
+  init_logging(false, true);
+  auto scene = read_scene(args);
+  if (!scene) return 2;
+  try {
+    RunOptions options;
+    options.write_output = false;
+    options.progress = false;
+    options.threads = threads;
+    Simulation sim(std::move(*scene), options);
+    std::cout << sim.graph().dot();
+  } catch (const Error& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace rift::cli

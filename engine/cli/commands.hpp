@@ -1,0 +1,30 @@
+#pragma once
+// The subcommands behind `rift`: run, check, info, graph. Each returns the process exit code:
+// 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options), 130 stopped by a
+// signal (a checkpoint was written; continue with --restart latest).
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rift::cli {
+
+struct SceneArgs {
+  std::string scene;                    // path; empty: the built-in default scene
+  std::vector<std::string> overrides;   // --set key.path=value
+};
+
+struct RunArgs {
+  SceneArgs scene;
+  std::string out_dir;                  // empty: rift-out/<scene name>
+  int threads = 1;
+  std::string restart;                  // "" or "latest"
+  std::optional<long long> stop_after;  // stop after this step with a checkpoint
+  bool quiet = false;
+};
+
+int run(const RunArgs& args);
+int check(const SceneArgs& args);
+int info();
+int graph(const SceneArgs& args, int threads);
+
+}  // namespace rift::cli

@@ -1,0 +1,36 @@
+#pragma once
+// A model is one physics package in a run (the solid today; fluid, contact and coupling later): it
+// creates its tables in the store, owns its systems, and answers the run loop's questions (stable
+// step, health after a step, fields to write, metrics for the time series and the summary).
+// A model exists in a run only when its section is in the scene.
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/io/xdmf_series.hpp"
+#include "engine/schedule/system.hpp"
+
+namespace rift {
+
+class Model {
+ public:
+  virtual ~Model() = default;
+  virtual std::string name() const = 0;
+  // Systems in the order a one-thread step would run them (the graph keeps only what data forces).
+  virtual std::vector<System*> systems() = 0;
+  // Largest step this model is stable with [s] (infinity when it sets no limit).
+  virtual double stable_dt() const { return std::numeric_limits<double>::infinity(); }
+  // After each step: a diagnosis when the state is no longer physical (NaN, inverted element, ...).
+  virtual std::optional<std::string> check_health(const StepContext& after) { return std::nullopt; }
+  // Output: append this model's grids with the requested fields (empty list: every field).
+  virtual void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {}
+  // One row of the time series: (name, value) pairs in a fixed order.
+  virtual void metrics(double time, std::vector<std::pair<std::string, double>>& row) {}
+  virtual void summarize(nlohmann::json& summary) const {}
+};
+
+}  // namespace rift

@@ -1,0 +1,126 @@
+#include "engine/schedule/step_graph.hpp"
+
+#include <algorithm>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+#include "engine/core/error.hpp"
+
+namespace rift {
+
+namespace {
+
+bool contains(const std::vector<std::string>& list, const std::string& key) {
+  return std::find(list.begin(), list.end(), key) != list.end();
+}
+
+// The column that forces `later` to wait for `earlier`, or "" when they may overlap.
+std::string conflict(const Access& earlier, const Access& later) {
+  if (earlier.changes_topology || later.changes_topology) return "topology";
+  for (const auto& w : earlier.writes)
+    if (contains(later.reads, w) || contains(later.writes, w)) return w;
+  for (const auto& w : later.writes)
+    if (contains(earlier.reads, w)) return w;
+  return "";
+}
+
+std::mutex trace_mutex;
+
+}  // namespace
+
+StepGraph::StepGraph(std::vector<System*> systems, int threads)
+    : systems_(std::move(systems)), threads_(threads), arena_(threads) {
+  if (threads < 1) throw Error("--threads must be at least 1, found " + std::to_string(threads));
+  for (System* s : systems_) {
+    access_.push_back(s->access());
+    timings_.push_back({s->name(), 0.0, 0});
+  }
+  derive_edges();
+  epoch_ = std::chrono::steady_clock::now();
+  build_flow_graph();
+}
+
+StepGraph::~StepGraph() {
+  if (graph_) arena_.execute([&] { graph_->wait_for_all(); });
+}
+
+void StepGraph::derive_edges() {
+  const int n = static_cast<int>(systems_.size());
+  // reach[i] = systems that must follow i (transitively); built from the last system backwards so a
+  // direct edge i->j is kept only when j is not already reachable through an earlier-kept successor.
+  std::vector<std::set<int>> reach(n);
+  successors_.assign(n, {});
+  edge_why_.assign(n, {});
+  for (int i = n - 1; i >= 0; --i) {
+    for (int j = i + 1; j < n; ++j) {
+      const std::string why = conflict(access_[i], access_[j]);
+      if (why.empty() || reach[i].count(j)) continue;
+      successors_[i].push_back(j);
+      edge_why_[i].push_back(why);
+      reach[i].insert(j);
+      reach[i].insert(reach[j].begin(), reach[j].end());
+    }
+  }
+}
+
+void StepGraph::build_flow_graph() {
+  using namespace tbb::flow;
+  arena_.execute([&] {
+    graph_ = std::make_unique<graph>();
+    start_ = std::make_unique<broadcast_node<continue_msg>>(*graph_);
+    for (size_t i = 0; i < systems_.size(); ++i) {
+      nodes_.push_back(std::make_unique<continue_node<continue_msg>>(*graph_, [this, i](const continue_msg&) {
+        const auto t0 = std::chrono::steady_clock::now();
+        systems_[i]->run(*current_);
+        const auto t1 = std::chrono::steady_clock::now();
+        timings_[i].seconds += std::chrono::duration<double>(t1 - t0).count();
+        timings_[i].calls += 1;
+        if (tracing_) {
+          std::lock_guard lock(trace_mutex);
+          intervals_.push_back({static_cast<int>(i), std::chrono::duration<double>(t0 - epoch_).count(),
+                                std::chrono::duration<double>(t1 - epoch_).count()});
+        }
+        return continue_msg();
+      }));
+    }
+    std::vector<bool> has_predecessor(systems_.size(), false);
+    for (size_t i = 0; i < systems_.size(); ++i)
+      for (int j : successors_[i]) {
+        make_edge(*nodes_[i], *nodes_[j]);
+        has_predecessor[j] = true;
+      }
+    for (size_t i = 0; i < systems_.size(); ++i)
+      if (!has_predecessor[i]) make_edge(*start_, *nodes_[i]);
+  });
+}
+
+void StepGraph::run_step(const StepContext& ctx) {
+  current_ = &ctx;
+  arena_.execute([&] {
+    start_->try_put(tbb::flow::continue_msg());
+    graph_->wait_for_all();
+  });
+  current_ = nullptr;
+}
+
+std::string StepGraph::dot() const {
+  std::ostringstream out;
+  out << "digraph step {\n  rankdir=TB;\n  node [shape=box, style=rounded, fontname=\"Helvetica\"];\n";
+  out << "  start [shape=circle, label=\"step\"];\n";
+  std::vector<bool> has_predecessor(systems_.size(), false);
+  for (size_t i = 0; i < systems_.size(); ++i)
+    for (int j : successors_[i]) has_predecessor[j] = true;
+  for (size_t i = 0; i < systems_.size(); ++i) {
+    out << "  s" << i << " [label=\"" << systems_[i]->name() << "\\nreads " << access_[i].reads.size()
+        << ", writes " << access_[i].writes.size() << " columns\"];\n";
+    if (!has_predecessor[i]) out << "  start -> s" << i << ";\n";
+  }
+  for (size_t i = 0; i < systems_.size(); ++i)
+    for (size_t k = 0; k < successors_[i].size(); ++k)
+      out << "  s" << i << " -> s" << successors_[i][k] << " [label=\"" << edge_why_[i][k] << "\"];\n";
+  out << "}\n";
+  return out.str();
+}
+
+}  // namespace rift

@@ -1,0 +1,32 @@
+#pragma once
+// A system owns one piece of physics. It declares which columns it reads and which it writes
+// ("table.column" keys); the engine derives the step's task graph from those declarations, so no one
+// writes dependency counts by hand. run() is called once per step from one graph node; data
+// parallelism inside it goes through parallel_for (engine/schedule/parallel.hpp).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rift {
+
+struct Access {
+  std::vector<std::string> reads;
+  std::vector<std::string> writes;  // a written column counts as read too
+  bool changes_topology = false;    // may add/remove rows or rewrite connectivity
+};
+
+struct StepContext {
+  int64_t step = 0;  // index of the step being taken (0 for the first)
+  double time = 0;   // simulated time at the start of the step [s]
+  double dt = 0;     // step size [s]
+};
+
+class System {
+ public:
+  virtual ~System() = default;
+  virtual std::string name() const = 0;
+  virtual Access access() const = 0;
+  virtual void run(const StepContext& ctx) = 0;
+};
+
+}  // namespace rift

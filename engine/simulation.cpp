@@ -1,0 +1,262 @@
+#include "engine/simulation.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/core/state_hash.hpp"
+#include "engine/io/atomic_file.hpp"
+#include "engine/io/checkpoint.hpp"
+#include "engine/io/xdmf_series.hpp"
+#include "engine/progress.hpp"
+#include "rift/build_info.hpp"
+
+namespace rift {
+
+namespace {
+using clock_type = std::chrono::steady_clock;
+double seconds_since(clock_type::time_point t0) {
+  return std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+}  // namespace
+
+std::atomic<bool>& Simulation::interrupt_flag() {
+  static std::atomic<bool> flag{false};
+  return flag;
+}
+
+Simulation::Simulation(Scene scene, RunOptions options) : scene_(std::move(scene)), options_(std::move(options)) {
+  if (options_.write_output) {
+    std::filesystem::create_directories(options_.out_dir);
+    open_log_file(options_.out_dir / "rift.log");
+    write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
+  }
+  spdlog::info("scene '{}' ({}), hash {}", scene_.name, scene_.source_file.empty() ? "built-in" : scene_.source_file,
+               scene_.hash);
+  world_ = build_world(scene_);
+  spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
+  for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
+  graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
+  choose_dt();
+  if (options_.write_output) {
+    series_ = std::make_unique<XdmfSeries>(options_.out_dir, "rift");
+    checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
+  }
+  if (options_.restart_latest) restart_from_latest();
+}
+
+Simulation::~Simulation() {
+  if (options_.write_output) close_log_file();
+}
+
+void Simulation::choose_dt() {
+  const double stable = world_->stable_dt();
+  const TimeSpec& t = scene_.time;
+  double requested;
+  if (t.dt) {
+    requested = *t.dt;
+    if (requested > stable && !t.allow_unstable_dt)
+      throw Error(fmt::format(
+          "time.dt = {:.6g} s is above the stable step {:.6g} s of this mesh and material (ratio {:.3g}). "
+          "Lower time.dt (or remove it to use time.safety x the stable step), or set time.allow_unstable_dt: "
+          "true to run it on purpose.",
+          requested, stable, requested / stable));
+    if (requested > stable) spdlog::warn("time.dt = {:.6g} s exceeds the stable step {:.6g} s (allowed by the scene)", requested, stable);
+  } else {
+    if (!std::isfinite(stable))
+      throw Error("time.dt: the scene has no model that sets a stable step, so time.dt must be given");
+    requested = t.safety * stable;
+  }
+  // Whole steps that land exactly on the end time: dt never exceeds the requested one.
+  total_steps_ = static_cast<int64_t>(std::ceil(t.end / requested - 1e-9));
+  total_steps_ = std::max<int64_t>(total_steps_, 1);
+  dt_ = t.end / static_cast<double>(total_steps_);
+  spdlog::info("dt = {:.6g} s (stable {:.6g} s), {} steps to t = {:.6g} s, {} thread(s)", dt_, stable, total_steps_,
+               t.end, options_.threads);
+}
+
+void Simulation::restart_from_latest() {
+  if (!checkpoints_) throw Error("--restart needs an output folder");
+  const auto latest = checkpoints_->latest();
+  if (!latest)
+    throw Error("--restart latest: no readable checkpoint in " + (options_.out_dir / "checkpoints").string() +
+                "; run without --restart, or point --out at the folder of the interrupted run");
+  const CheckpointMeta meta = read_checkpoint(*latest, world_->store);
+  if (meta.scene_hash != scene_.hash)
+    throw Error("--restart latest: " + latest->string() + " was written for scene hash " + meta.scene_hash +
+                ", this scene resolves to " + scene_.hash + ". A restart continues the same scene; compare " +
+                (options_.out_dir / "scene.yaml").string() + " with your scene and overrides.");
+  if (meta.dt != dt_)
+    throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s", meta.dt, dt_));
+  step_ = meta.step;
+  outputs_written_ = meta.integers.count("outputs_written") ? meta.integers.at("outputs_written") : 0;
+  series_->resume(time());
+  // Reload the time series up to the restart step.
+  std::ifstream csv(options_.out_dir / "timeseries.csv");
+  std::string line;
+  if (std::getline(csv, line)) {
+    while (std::getline(csv, line)) {
+      std::istringstream row(line);
+      std::vector<double> values;
+      for (std::string cell; std::getline(row, cell, ',');) values.push_back(std::stod(cell));
+      if (!values.empty() && values[0] <= static_cast<double>(step_)) metric_rows_.push_back(values);
+    }
+  }
+  spdlog::info("restarted from {} at step {}, t = {:.6g} s", latest->string(), step_, time());
+}
+
+void Simulation::step_once() {
+  const StepContext ctx{step_, time(), dt_};
+  graph_->run_step(ctx);
+  ++step_;
+  const StepContext after{step_, time(), dt_};
+  for (const auto& m : world_->models)
+    if (auto diagnosis = m->check_health(after)) throw Error("run stopped by the " + m->name() + " guard: " + *diagnosis);
+}
+
+RunResult Simulation::run() {
+  const auto t0 = clock_type::now();
+  RunResult result;
+  Progress progress(total_steps_, scene_.time.end, options_.progress);
+  const double interval = scene_.output.interval;
+  const int64_t metric_every = std::max<int64_t>(1, total_steps_ / 1000);
+  auto last_checkpoint = clock_type::now();
+  if (step_ == 0 && options_.write_output) {
+    record_metrics();
+    write_output();
+  }
+  try {
+    while (step_ < total_steps_) {
+      step_once();
+      const bool last = step_ == total_steps_;
+      if (options_.write_output) {
+        if (step_ % metric_every == 0 || last) record_metrics();
+        const bool output_due = interval > 0 && time() >= static_cast<double>(outputs_written_) * interval * (1 - 1e-12);
+        if (output_due || last) write_output();
+        const CheckpointSpec& c = scene_.checkpoint;
+        const bool stop_here = options_.stop_after_step && step_ >= *options_.stop_after_step && !last;
+        const bool interrupted = interrupt_flag().load();
+        if ((c.every_steps > 0 && step_ % c.every_steps == 0) ||
+            (c.every_seconds > 0 && seconds_since(last_checkpoint) >= c.every_seconds) || stop_here || interrupted) {
+          write_checkpoint();
+          last_checkpoint = clock_type::now();
+        }
+        if (interrupted || stop_here) {
+          result.stop_reason = interrupted ? "signal" : "stop_after_step";
+          spdlog::warn("stopped at step {} (t = {:.6g} s) by {}; continue with --restart latest", step_, time(),
+                       interrupted ? "a signal" : "--stop-after");
+          break;
+        }
+      } else if (options_.stop_after_step && step_ >= *options_.stop_after_step) {
+        result.stop_reason = "stop_after_step";
+        break;
+      }
+      progress.update(step_, time());
+    }
+  } catch (const Error& e) {
+    progress.finish();
+    result.steps = step_;
+    result.time = time();
+    result.wall_seconds = seconds_since(t0);
+    result.stop_reason = e.what();
+    if (options_.write_output) write_summary(result);
+    throw;
+  }
+  progress.finish();
+  result.steps = step_;
+  result.time = time();
+  result.completed = step_ == total_steps_;
+  result.state_hash = state_hash(world_->store);
+  result.wall_seconds = seconds_since(t0);
+  if (options_.write_output) write_summary(result);
+  log_timing_table();
+  spdlog::info("{} at step {} (t = {:.6g} s) in {:.2f} s, state hash {}", result.completed ? "finished" : "stopped",
+               step_, time(), result.wall_seconds, hex64(result.state_hash));
+  return result;
+}
+
+void Simulation::write_output() {
+  const auto t0 = clock_type::now();
+  std::vector<XdmfGrid> grids;
+  for (const auto& m : world_->models) m->output_grids(grids, scene_.output.fields);
+  if (!grids.empty()) series_->write(time(), step_, grids);
+  ++outputs_written_;
+  output_seconds_ += seconds_since(t0);
+}
+
+void Simulation::record_metrics() {
+  std::vector<std::pair<std::string, double>> row;
+  for (const auto& m : world_->models) m->metrics(time(), row);
+  if (metric_names_.empty())
+    for (const auto& [name, value] : row) metric_names_.push_back(name);
+  std::vector<double> values{static_cast<double>(step_), time()};
+  for (const auto& [name, value] : row) values.push_back(value);
+  metric_rows_.push_back(std::move(values));
+  std::string csv = "step,time";
+  for (const auto& n : metric_names_) csv += "," + n;
+  csv += "\n";
+  for (const auto& r : metric_rows_) {
+    for (size_t i = 0; i < r.size(); ++i) csv += fmt::format("{}{:.17g}", i ? "," : "", r[i]);
+    csv += "\n";
+  }
+  write_text_atomic(options_.out_dir / "timeseries.csv", csv);
+}
+
+void Simulation::write_checkpoint() {
+  const auto t0 = clock_type::now();
+  CheckpointMeta meta;
+  meta.step = step_;
+  meta.time = time();
+  meta.dt = dt_;
+  meta.scene_hash = scene_.hash;
+  meta.resolved_scene = scene_.resolved_yaml;
+  meta.rift_version = build::version;
+  meta.integers["outputs_written"] = outputs_written_;
+  const auto file = checkpoints_->write(world_->store, meta);
+  checkpoint_seconds_ += seconds_since(t0);
+  spdlog::debug("checkpoint {}", file.string());
+}
+
+void Simulation::write_summary(const RunResult& result) const {
+  RunSummary summary;
+  auto& j = summary.root();
+  j["rift_version"] = build::version;
+  j["scene"] = {{"name", scene_.name}, {"file", scene_.source_file}, {"hash", scene_.hash}};
+  j["status"] = result.completed ? "completed" : (result.stop_reason.empty() ? "stopped" : result.stop_reason);
+  j["threads"] = options_.threads;
+  j["steps"] = result.steps;
+  j["total_steps"] = total_steps_;
+  j["simulated_time"] = result.time;
+  j["dt"] = dt_;
+  j["stable_dt"] = world_->stable_dt();
+  j["wall_seconds"] = result.wall_seconds;
+  j["state_hash"] = hex64(result.state_hash);
+  j["mesh"] = quality_to_json(world_->mesh_quality);
+  j["mesh"]["seconds"] = world_->mesh_seconds;
+  for (const auto& t : graph_->timings()) j["wall_seconds_per_system"][t.name] = t.seconds;
+  j["wall_seconds_per_system"]["output"] = output_seconds_;
+  j["wall_seconds_per_system"]["checkpoint"] = checkpoint_seconds_;
+  for (const auto& m : world_->models) m->summarize(j["metrics"]);
+  summary.write(options_.out_dir / "summary.json");
+}
+
+void Simulation::log_timing_table() const {
+  double total = output_seconds_ + checkpoint_seconds_;
+  for (const auto& t : graph_->timings()) total += t.seconds;
+  std::string table = fmt::format("{:<22} {:>10} {:>8} {:>12}\n", "system", "wall [s]", "share", "per call [us]");
+  auto row = [&](const std::string& name, double s, int64_t calls) {
+    table += fmt::format("{:<22} {:>10.3f} {:>7.1f}% {:>12.2f}\n", name, s, total > 0 ? 100 * s / total : 0.0,
+                         calls > 0 ? 1e6 * s / calls : 0.0);
+  };
+  for (const auto& t : graph_->timings()) row(t.name, t.seconds, t.calls);
+  row("output", output_seconds_, outputs_written_);
+  row("checkpoint", checkpoint_seconds_, 0);
+  spdlog::info("wall time per system:\n{}", table);
+}
+
+}  // namespace rift

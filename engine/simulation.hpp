@@ -1,0 +1,80 @@
+#pragma once
+// A run: the world built from a scene, its step graph, and the loop that advances it with outputs,
+// checkpoints, guards and a progress line. The CLI, the tests and the benchmarks all go through here.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/io/run_summary.hpp"
+#include "engine/schedule/step_graph.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/world.hpp"
+
+namespace rift {
+
+struct RunOptions {
+  std::filesystem::path out_dir = "rift-out";
+  int threads = 1;
+  bool restart_latest = false;
+  bool progress = true;
+  bool write_output = true;                 // fields, time series, summary (off for pure benchmarks)
+  std::optional<int64_t> stop_after_step;   // stop (with a checkpoint) once this step is done: tests, studies
+};
+
+struct RunResult {
+  int64_t steps = 0;
+  double time = 0.0;
+  bool completed = false;   // reached the end time
+  std::string stop_reason;  // "", "signal", "stop_after_step"
+  uint64_t state_hash = 0;
+  double wall_seconds = 0.0;
+};
+
+class Simulation {
+ public:
+  Simulation(Scene scene, RunOptions options);
+  ~Simulation();
+
+  RunResult run();
+  void step_once();  // one step without outputs (benchmarks, tests)
+
+  const Scene& scene() const { return scene_; }
+  World& world() { return *world_; }
+  StepGraph& graph() { return *graph_; }
+  double dt() const { return dt_; }
+  int64_t step() const { return step_; }
+  int64_t total_steps() const { return total_steps_; }
+  double time() const { return static_cast<double>(step_) * dt_; }
+
+  // Set by SIGINT/SIGTERM handlers: the loop writes a checkpoint and stops at the next step boundary.
+  static std::atomic<bool>& interrupt_flag();
+
+ private:
+  void choose_dt();
+  void restart_from_latest();
+  void write_output();
+  void record_metrics();
+  void write_checkpoint();
+  void write_summary(const RunResult& result) const;
+  void log_timing_table() const;
+
+  Scene scene_;
+  RunOptions options_;
+  std::unique_ptr<World> world_;
+  std::unique_ptr<StepGraph> graph_;
+  double dt_ = 0.0;
+  int64_t step_ = 0;
+  int64_t total_steps_ = 0;
+  int64_t outputs_written_ = 0;
+  std::unique_ptr<class XdmfSeries> series_;
+  std::unique_ptr<class CheckpointSet> checkpoints_;
+  std::vector<std::string> metric_names_;
+  std::vector<std::vector<double>> metric_rows_;
+  double output_seconds_ = 0.0, checkpoint_seconds_ = 0.0;
+};
+
+}  // namespace rift

@@ -1,0 +1,40 @@
+#include "engine/world.hpp"
+
+#include <chrono>
+#include <limits>
+
+#include "engine/mesh/box_generator.hpp"
+#include "engine/mesh/msh_reader.hpp"
+#include "systems/solid_model.hpp"
+
+namespace rift {
+
+std::vector<System*> World::systems() const {
+  std::vector<System*> all;
+  for (const auto& m : models)
+    for (System* s : m->systems()) all.push_back(s);
+  return all;
+}
+
+double World::stable_dt() const {
+  double dt = std::numeric_limits<double>::infinity();
+  for (const auto& m : models) dt = std::min(dt, m->stable_dt());
+  return dt;
+}
+
+TetMesh load_mesh(const MeshSpec& spec) {
+  if (spec.file) return read_msh(*spec.file, spec.scale);
+  return generate_box_mesh(*spec.generate);
+}
+
+std::unique_ptr<World> build_world(const Scene& scene) {
+  auto world = std::make_unique<World>();
+  const auto t0 = std::chrono::steady_clock::now();
+  world->mesh = load_mesh(scene.mesh);
+  world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  world->mesh_quality = measure_quality(world->mesh);
+  if (scene.solid) world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  return world;
+}
+
+}  // namespace rift

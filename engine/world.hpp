@@ -1,0 +1,30 @@
+#pragma once
+// Everything a run simulates, built from a scene: the mesh, the store of tables, and one model per
+// physics section present in the scene (model only what the scene requires).
+#include <memory>
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/mesh/mesh_quality.hpp"
+#include "engine/mesh/tet_mesh.hpp"
+#include "engine/model.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace rift {
+
+struct World {
+  TetMesh mesh;
+  MeshQuality mesh_quality;
+  double mesh_seconds = 0.0;  // wall time to read or generate the mesh
+  Store store;
+  std::vector<std::unique_ptr<Model>> models;
+
+  std::vector<System*> systems() const;  // every model's systems, in script order
+  double stable_dt() const;              // the smallest of the models' limits
+};
+
+// Reads or generates the mesh and builds the models. Throws rift::Error with a complete message.
+std::unique_ptr<World> build_world(const Scene& scene);
+TetMesh load_mesh(const MeshSpec& spec);
+
+}  // namespace rift

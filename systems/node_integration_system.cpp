@@ -1,0 +1,58 @@
+#include "systems/node_integration_system.hpp"
+
+#include "engine/schedule/parallel.hpp"
+#include "kernels/node_integration.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+namespace {
+constexpr size_t grain = 4096;
+}
+
+NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoundarySpec> conditions,
+                                             std::array<double, 3> gravity)
+    : store_(store), conditions_(std::move(conditions)), gravity_(gravity) {
+  prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
+  const size_t nodes = store_.table(solid::node_table).size();
+  block_non_finite_.resize((nodes + grain - 1) / grain);
+}
+
+Access NodeIntegrationSystem::access() const {
+  using solid::col;
+  const char* N = solid::node_table;
+  return {{col(solid::tet_table, "corner_force"), col(solid::face_table, "corner_force"), col(N, "inv_mass"),
+           col(N, "free"), col(N, "held"), col(N, "slots"), col(solid::slot_table, "slot")},
+          {col(N, "x"), col(N, "v"), col(N, "f")}};
+}
+
+void NodeIntegrationSystem::run(const StepContext& ctx) {
+  // The new velocity lives at t + dt/2, so prescribed velocities are evaluated there.
+  for (size_t i = 0; i < conditions_.size(); ++i) {
+    const SolidBoundarySpec& c = conditions_[i];
+    const double scale = c.kind == SolidBoundarySpec::Kind::velocity ? c.function(ctx.time + 0.5 * ctx.dt) : 0.0;
+    for (int k = 0; k < 3; ++k) prescribed_[3 * i + k] = c.direction[k] * scale;
+  }
+  Table& nodes = store_.table(solid::node_table);
+  const kernels::NodeIntegrationArgs args{ctx.dt,
+                                          {gravity_[0], gravity_[1], gravity_[2]},
+                                          nodes.span<double>("x"),
+                                          nodes.span<double>("v"),
+                                          nodes.span<double>("f"),
+                                          nodes.span<double>("inv_mass"),
+                                          nodes.span<uint8_t>("free"),
+                                          nodes.span<int32_t>("held"),
+                                          prescribed_};
+  const Table& tets = store_.table(solid::tet_table);
+  const kernels::ForceSlots slots{tets.span<double>("corner_force"),
+                                  store_.table(solid::face_table).span<double>("corner_force"),
+                                  static_cast<int64_t>(4 * tets.size()), nodes.span<int32_t>("slots"),
+                                  store_.table(solid::slot_table).span<int32_t>("slot")};
+  parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {
+    block_non_finite_[begin / grain] = kernels::integrate_nodes(args, slots, begin, end);
+  });
+  non_finite_ = 0;
+  for (size_t b : block_non_finite_) non_finite_ += b;
+}
+
+}  // namespace rift

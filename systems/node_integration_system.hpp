@@ -1,0 +1,32 @@
+#pragma once
+// The node pass: gathers every producer's corner forces, then advances velocities and positions
+// by central difference, holding constrained components at their prescribed velocity.
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/schedule/system.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace rift {
+
+class NodeIntegrationSystem : public System {
+ public:
+  // velocity_conditions[i] drives nodes whose `held` column is i (fixed supports are velocity 0).
+  NodeIntegrationSystem(Store& store, std::vector<SolidBoundarySpec> velocity_conditions,
+                        std::array<double, 3> gravity);
+  std::string name() const override { return "node_integration"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+
+  size_t non_finite_nodes() const { return non_finite_; }
+
+ private:
+  Store& store_;
+  std::vector<SolidBoundarySpec> conditions_;
+  std::array<double, 3> gravity_;
+  std::vector<double> prescribed_;     // 3 per condition, evaluated each step
+  std::vector<size_t> block_non_finite_;
+  size_t non_finite_ = 0;
+};
+
+}  // namespace rift

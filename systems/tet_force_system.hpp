@@ -1,0 +1,32 @@
+#pragma once
+// Internal forces of the tetrahedra (compressible neo-Hookean + viscous damping, kernels/tet_force).
+// Reads node positions and velocities, writes each tet's corner forces, stress and elastic energy.
+#include <atomic>
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/schedule/system.hpp"
+#include "kernels/tet_force.hpp"
+
+namespace rift {
+
+class TetForceSystem : public System {
+ public:
+  TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials);
+  std::string name() const override { return "tet_forces"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+
+  // Inverted tets (J <= 0) seen in the last step, and the lowest index among them.
+  size_t inverted() const { return inverted_; }
+  int64_t first_inverted() const { return first_inverted_; }
+
+ private:
+  Store& store_;
+  std::vector<kernels::TetMaterial> materials_;
+  std::vector<kernels::TetForceStatus> block_status_;  // one per block, sized once
+  size_t inverted_ = 0;
+  int64_t first_inverted_ = -1;
+};
+
+}  // namespace rift

@@ -93,7 +93,7 @@ struct Scene {
   OutputSpec output;
   CheckpointSpec checkpoint;
   std::string resolved_yaml;         // the complete scene (defaults filled, overrides applied)
-  std::string hash;                  // hex SHA-256-like digest of resolved_yaml (stable across runs)
+  std::string hash;                  // FNV-1a 64 of resolved_yaml, 16 hex digits (stable across runs)
 };
 
 }  // namespace rift

@@ -1,0 +1,93 @@
+#include "engine/scene/load_scene.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/core/error.hpp"
+#include "engine/scene/resolved_yaml.hpp"
+#include "engine/scene/scene_overrides.hpp"
+#include "engine/scene/scene_sections.hpp"
+#include "engine/scene/yaml_reader.hpp"
+
+namespace rift {
+namespace {
+
+// The whole document, section by section in schema order. A new top-level section is one more line.
+Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string& file_label,
+                      const std::string& base_dir) {
+  Scene scene;
+  const SourceLocation top{file_label, 1, 1};
+  if (root.kind != YamlNode::Kind::mapping && root.kind != YamlNode::Kind::null) {
+    ctx.error(root.where, "", "a mapping of sections (scene, time, mesh, ...)", describe_found(root));
+    return scene;
+  }
+  MapReader doc(ctx, root.kind == YamlNode::Kind::mapping ? &root : nullptr, "", "", top);
+  MapReader scene_sec = doc.section("scene", true);
+  read_scene_section(scene_sec, scene);
+  MapReader time = doc.section("time", true);
+  scene.time = read_time_section(time);
+  MapReader mesh = doc.section("mesh", true);
+  scene.mesh = read_mesh_section(mesh, base_dir);
+  const bool has_solid = doc.has("solid");
+  MapReader solid = doc.section("solid", false);
+  if (has_solid) scene.solid = read_solid_section(solid);
+  MapReader output = doc.section("output", false);
+  scene.output = read_output_section(output);
+  MapReader checkpoint = doc.section("checkpoint", false);
+  scene.checkpoint = read_checkpoint_section(checkpoint);
+  doc.finish();
+  return scene;
+}
+
+}  // namespace
+
+SceneLoadResult read_scene_text(const std::string& yaml, const std::string& file_label,
+                                const std::string& base_dir, const std::vector<std::string>& overrides) {
+  SceneLoadResult result;
+  YamlParseResult parsed = parse_yaml_tree(yaml, file_label);
+  if (parsed.error) {
+    result.errors.push_back(*parsed.error);
+    return result;
+  }
+  ReadContext ctx;
+  apply_overrides(parsed.root, overrides, ctx);
+  Scene scene = read_scene_tree(ctx, parsed.root, file_label, base_dir);
+  result.errors = ctx.errors();
+  // Overrides first (they have no line), then the file top to bottom, whatever order checks ran in.
+  std::stable_sort(result.errors.begin(), result.errors.end(), [](const auto& a, const auto& b) {
+    return std::pair(a.line, a.column) < std::pair(b.line, b.column);
+  });
+  result.consumed_keys.assign(ctx.consumed_keys().begin(), ctx.consumed_keys().end());
+  if (!result.errors.empty()) return result;
+  scene.source_file = file_label;
+  scene.resolved_yaml = emit_resolved_yaml(scene);
+  scene.hash = fnv1a64_hex(scene.resolved_yaml);
+  result.scene = std::move(scene);
+  return result;
+}
+
+SceneLoadResult read_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    SceneLoadResult result;
+    result.errors.push_back({path, 0, 0, "", "a readable scene file", std::strerror(errno), ""});
+    return result;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  return read_scene_text(text.str(), path, base_dir, overrides);
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  SceneLoadResult result = read_scene_file(path, overrides);
+  if (result.errors.empty()) return std::move(*result.scene);
+  std::string message;
+  for (const auto& e : result.errors) message += (message.empty() ? "" : "\n") + e.format();
+  throw Error(message);
+}
+
+}  // namespace rift

@@ -1,0 +1,113 @@
+// mesh: a Gmsh file, or a box (with notches) the mesher generates.
+#include <filesystem>
+
+#include "engine/scene/number_text.hpp"
+#include "engine/scene/scene_sections.hpp"
+
+namespace rift {
+namespace {
+
+constexpr std::array<std::string_view, 2> kShapes{"wedge", "slot"};  // NotchSpec::Shape order
+constexpr std::array<std::string_view, 6> kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
+
+std::string interval_text(double lo, double hi) {
+  return "(" + message_real(lo) + ", " + message_real(hi) + ")";
+}
+
+// Checks that a notch lies in the box; only values that were read correctly are compared, so one
+// typo gives one message.
+void check_notch_fits(MapReader& n, const NotchSpec& notch, const MeshGenerateSpec& box, int face_axis) {
+  const int a = notch.opening_axis;
+  const std::string axis(kAxes[a]);
+  if (n.ok("depth") && n.ok("face") && notch.depth >= box.size[face_axis])
+    n.error("depth", "a depth in m, in " + interval_text(0, box.size[face_axis]) + " (the box size along " +
+                         std::string(kAxes[face_axis]) + ")");
+  if (n.ok("opening_axis") && n.ok("face") && a == face_axis) {
+    n.error("opening_axis", "an axis other than " + axis + ", the normal of face " + notch.face);
+    return;
+  }
+  if (!n.ok("opening_axis")) return;
+  const double lo = box.origin[a], hi = box.origin[a] + box.size[a];
+  if (n.ok("center") && !(notch.center > lo && notch.center < hi))
+    n.error("center", "a coordinate in m inside the box along " + axis + ", in " + interval_text(lo, hi));
+  if (n.ok("center") && n.ok("opening") &&
+      !(notch.center - 0.5 * notch.opening > lo && notch.center + 0.5 * notch.opening < hi)) {
+    const double room = 2.0 * std::min(notch.center - lo, hi - notch.center);
+    n.error("opening", "an opening in m < " + message_real(room) +
+                           " so the notch stays inside the box along " + axis + " " + interval_text(lo, hi));
+  }
+}
+
+NotchSpec read_notch(MapReader& n, const MeshGenerateSpec& box, bool box_ok) {
+  NotchSpec notch;
+  notch.shape = static_cast<NotchSpec::Shape>(n.choice("shape", kShapes, std::nullopt));
+  const size_t face = n.choice("face", kFaces, std::nullopt);
+  notch.face = std::string(kFaces[face]);
+  notch.opening_axis = static_cast<int>(n.choice("opening_axis", kAxes, std::nullopt));
+  notch.center = n.real("center", any_real("m"), std::nullopt);
+  notch.depth = n.real("depth", positive("m"), std::nullopt);
+  notch.opening = n.real("opening", positive("m"), std::nullopt);
+  notch.name = n.string("name", std::string("notch"));
+  if (box_ok) check_notch_fits(n, notch, box, static_cast<int>(face / 2));
+  n.finish();
+  return notch;
+}
+
+MeshGenerateSpec read_generate(MapReader& g) {
+  MeshGenerateSpec spec;
+  spec.size = g.vec3("box", positive("m"), std::nullopt);
+  spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
+  spec.size_min = g.real("size_min", positive("m"), std::nullopt);
+  spec.size_max = g.real("size_max", positive("m"), std::nullopt);
+  if (g.ok("size_min") && g.ok("size_max") && spec.size_max < spec.size_min)
+    g.error("size_max", "a number in m, >= size_min (" + message_real(spec.size_min) + ")");
+  spec.grading = g.real("grading", positive(""), 0.5);
+  spec.seed = static_cast<uint32_t>(g.integer("seed", IntRule{0, UINT32_MAX}, 1));
+  const bool box_ok = g.ok("box") && g.ok("origin");
+  for (auto& n : g.section_list("notches", 0)) spec.notches.push_back(read_notch(n, spec, box_ok));
+  g.finish();
+  return spec;
+}
+
+// The file must exist now: a wrong path found at t = 0 beats one found after meshing starts.
+std::string resolve_mesh_file(MapReader& sec, const std::string& file, const std::string& base_dir) {
+  namespace fs = std::filesystem;
+  fs::path path = fs::path(base_dir) / file;
+  std::error_code ec;
+  fs::path absolute = fs::absolute(path, ec);
+  if (!ec) path = absolute;
+  path = path.lexically_normal();
+  if (!fs::is_regular_file(path, ec))
+    sec.error("file",
+              "the path of an existing Gmsh MSH 4.1 file (relative paths start at the scene's folder)",
+              "no file at " + path.string());
+  return path.string();
+}
+
+}  // namespace
+
+MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
+  MeshSpec mesh;
+  const bool has_file = sec.has("file"), has_generate = sec.has("generate");
+  if (has_file == has_generate && !sec.silent()) {
+    const std::string expected = "exactly one of mesh.file or mesh.generate";
+    if (has_file)
+      sec.context().error(sec.where("generate"), "mesh", expected, "both");
+    else
+      sec.context().error(sec.where(), "mesh", expected, "neither");
+  }
+  if (has_file) {
+    std::string file = sec.string("file", std::nullopt);
+    if (sec.ok("file")) mesh.file = resolve_mesh_file(sec, file, base_dir);
+  } else {
+    sec.declare("file");
+  }
+  mesh.scale = sec.real("scale", positive(""), 1.0);
+  MapReader generate = sec.section("generate", false);
+  if (has_generate) mesh.generate = read_generate(generate);
+  sec.finish();
+  return mesh;
+}
+
+}  // namespace rift

@@ -1,0 +1,90 @@
+// solid: materials (elastic constants per mesh region), boundary conditions and gravity.
+#include <map>
+
+#include "engine/scene/scene_sections.hpp"
+
+namespace rift {
+namespace {
+
+// SolidBoundarySpec::Kind order.
+constexpr std::array<std::string_view, 4> kBoundaryTypes{"fixed", "velocity", "traction", "pressure"};
+constexpr std::array<std::string_view, 3> kComponents{"x", "y", "z"};
+
+MaterialSpec read_material(MapReader& m) {
+  MaterialSpec mat;
+  mat.name = m.string("name", std::nullopt);
+  mat.regions = m.string_list("regions", {"all"});
+  mat.density = m.real("density", positive("kg/m^3"), std::nullopt);
+  mat.young = m.real("young", positive("Pa"), std::nullopt);
+  mat.poisson = m.real("poisson", RealRule{"", 0.0, 0.5, false, true}, std::nullopt);
+  mat.damping = m.real("damping", RealRule{"", 0.0, 1.0, false, false}, 0.0);
+  m.finish();
+  return mat;
+}
+
+// Keys that apply to only some boundary types are forbidden for the others, so a pressure boundary
+// with a `direction` is an error rather than a silently ignored vector.
+SolidBoundarySpec read_boundary(MapReader& b) {
+  using Kind = SolidBoundarySpec::Kind;
+  SolidBoundarySpec bc;
+  bc.surface = b.string("surface", std::nullopt);
+  bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
+  if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
+    for (auto key : {"components", "direction", "value"}) b.declare(key);
+    b.finish();
+    return bc;
+  }
+  const std::string for_type = "for type " + std::string(kBoundaryTypes[static_cast<size_t>(bc.kind)]);
+  if (bc.kind == Kind::fixed || bc.kind == Kind::velocity) {
+    std::array<bool, 3> on{};
+    for (size_t axis : b.choice_list("components", kComponents, {0, 1, 2}, 1)) on[axis] = true;
+    bc.components = on;
+  } else {
+    b.forbid("components", for_type + " (it loads every axis)");
+  }
+  if (bc.kind == Kind::velocity) {
+    bc.direction = b.vec3("direction", any_real("m/s"), std::nullopt);
+  } else if (bc.kind == Kind::traction) {
+    bc.direction = b.vec3("direction", any_real("Pa"), std::nullopt);
+  } else {
+    b.forbid("direction", for_type);
+  }
+  if (bc.kind == Kind::fixed) {
+    b.forbid("value", for_type);
+  } else if (bc.kind == Kind::pressure) {
+    bc.function = b.time_function("value", "Pa", std::nullopt);
+  } else {
+    TimeFunction one;
+    one.value = 1.0;
+    bc.function = b.time_function("value", "", one);  // dimensionless: scales `direction`
+  }
+  b.finish();
+  return bc;
+}
+
+void check_unique_names(MapReader& solid, std::vector<MapReader>& readers,
+                        const std::vector<MaterialSpec>& mats) {
+  std::map<std::string, size_t> seen;
+  for (size_t i = 0; i < mats.size(); ++i) {
+    if (!readers[i].ok("name")) continue;
+    auto [it, inserted] = seen.emplace(mats[i].name, i);
+    if (!inserted)
+      readers[i].error("name", "a name no other material has (also used by " + solid.key_path("materials") +
+                                   "[" + std::to_string(it->second) + "])");
+  }
+}
+
+}  // namespace
+
+SolidSpec read_solid_section(MapReader& sec) {
+  SolidSpec solid;
+  solid.gravity = sec.vec3("gravity", any_real("m/s^2"), std::array<double, 3>{});
+  auto materials = sec.section_list("materials", 1);
+  for (auto& m : materials) solid.materials.push_back(read_material(m));
+  check_unique_names(sec, materials, solid.materials);
+  for (auto& b : sec.section_list("boundaries", 0)) solid.boundaries.push_back(read_boundary(b));
+  sec.finish();
+  return solid;
+}
+
+}  // namespace rift

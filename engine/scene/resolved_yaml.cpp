@@ -1,0 +1,196 @@
+#include "engine/scene/resolved_yaml.hpp"
+
+#include <cstdio>
+
+#include "engine/scene/number_text.hpp"
+
+namespace rift {
+namespace {
+
+// Strings are always double-quoted so no name can turn into a number, boolean or null on re-reading.
+std::string quoted(std::string_view s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string vec3(const std::array<double, 3>& v) {
+  return "[" + yaml_real(v[0]) + ", " + yaml_real(v[1]) + ", " + yaml_real(v[2]) + "]";
+}
+
+// Appends "indent key: value" lines.
+class Lines {
+ public:
+  void line(int indent, std::string_view key, std::string_view value = {}) {
+    text_.append(static_cast<size_t>(indent) * 2, ' ');
+    text_ += key;
+    text_ += ':';
+    if (!value.empty()) {
+      text_ += ' ';
+      text_ += value;
+    }
+    text_ += '\n';
+  }
+  // The first key of a list item: "- key: value" at `indent`.
+  void item(int indent, std::string_view key, std::string_view value) {
+    text_.append(static_cast<size_t>(indent) * 2, ' ');
+    text_ += "- ";
+    line(0, key, value);
+  }
+  std::string& text() { return text_; }
+
+ private:
+  std::string text_;
+};
+
+void emit_time_function(Lines& o, int indent, std::string_view key, const TimeFunction& f) {
+  switch (f.kind) {
+    case TimeFunction::Kind::constant:
+      o.line(indent, key, yaml_real(f.value));
+      return;
+    case TimeFunction::Kind::ramp:
+      o.line(indent, key);
+      o.line(indent + 1, "ramp");
+      o.line(indent + 2, "value", yaml_real(f.value));
+      o.line(indent + 2, "start_time", yaml_real(f.start_time));
+      o.line(indent + 2, "rate", yaml_real(f.rate));
+      o.line(indent + 2, "limit", f.has_limit ? yaml_real(f.limit) : "null");
+      return;
+    case TimeFunction::Kind::table: {
+      std::string rows;
+      for (const auto& [t, v] : f.points)
+        rows += (rows.empty() ? "[" : ", [") + yaml_real(t) + ", " + yaml_real(v) + "]";
+      o.line(indent, key);
+      o.line(indent + 1, "table", "[" + rows + "]");
+      return;
+    }
+  }
+}
+
+void emit_time(Lines& o, const TimeSpec& t) {
+  o.line(0, "time");
+  o.line(1, "end", yaml_real(t.end));
+  o.line(1, "dt", t.dt ? yaml_real(*t.dt) : "null");
+  o.line(1, "safety", yaml_real(t.safety));
+  o.line(1, "allow_unstable_dt", t.allow_unstable_dt ? "true" : "false");
+}
+
+void emit_notch(Lines& o, const NotchSpec& n) {
+  static constexpr const char* kAxes[] = {"x", "y", "z"};
+  o.item(3, "shape", n.shape == NotchSpec::Shape::wedge ? "wedge" : "slot");
+  o.line(4, "face", n.face);
+  o.line(4, "opening_axis", kAxes[n.opening_axis]);
+  o.line(4, "center", yaml_real(n.center));
+  o.line(4, "depth", yaml_real(n.depth));
+  o.line(4, "opening", yaml_real(n.opening));
+  o.line(4, "name", quoted(n.name));
+}
+
+void emit_mesh(Lines& o, const MeshSpec& m) {
+  o.line(0, "mesh");
+  if (m.file) o.line(1, "file", quoted(*m.file));
+  o.line(1, "scale", yaml_real(m.scale));
+  if (!m.generate) return;
+  const MeshGenerateSpec& g = *m.generate;
+  o.line(1, "generate");
+  o.line(2, "box", vec3(g.size));
+  o.line(2, "origin", vec3(g.origin));
+  o.line(2, "size_min", yaml_real(g.size_min));
+  o.line(2, "size_max", yaml_real(g.size_max));
+  o.line(2, "grading", yaml_real(g.grading));
+  o.line(2, "seed", std::to_string(g.seed));
+  o.line(2, "notches", g.notches.empty() ? "[]" : "");
+  for (const auto& n : g.notches) emit_notch(o, n);
+}
+
+void emit_material(Lines& o, const MaterialSpec& m) {
+  std::string regions;
+  for (const auto& r : m.regions) regions += (regions.empty() ? "" : ", ") + quoted(r);
+  o.item(2, "name", quoted(m.name));
+  o.line(3, "regions", "[" + regions + "]");
+  o.line(3, "density", yaml_real(m.density));
+  o.line(3, "young", yaml_real(m.young));
+  o.line(3, "poisson", yaml_real(m.poisson));
+  o.line(3, "damping", yaml_real(m.damping));
+}
+
+// Only the keys that apply to the boundary's type, as the reader forbids the others.
+void emit_boundary(Lines& o, const SolidBoundarySpec& b) {
+  using Kind = SolidBoundarySpec::Kind;
+  static constexpr const char* kTypes[] = {"fixed", "velocity", "traction", "pressure"};
+  o.item(2, "surface", quoted(b.surface));
+  o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
+  if (b.kind == Kind::fixed || b.kind == Kind::velocity) {
+    std::string comps;
+    for (int a = 0; a < 3; ++a)
+      if (b.components[a]) comps += std::string(comps.empty() ? "" : ", ") + "xyz"[a];
+    o.line(3, "components", "[" + comps + "]");
+  }
+  if (b.kind == Kind::velocity || b.kind == Kind::traction) o.line(3, "direction", vec3(b.direction));
+  if (b.kind != Kind::fixed) emit_time_function(o, 3, "value", b.function);
+}
+
+void emit_solid(Lines& o, const SolidSpec& s) {
+  o.line(0, "solid");
+  o.line(1, "gravity", vec3(s.gravity));
+  o.line(1, "materials");
+  for (const auto& m : s.materials) emit_material(o, m);
+  o.line(1, "boundaries", s.boundaries.empty() ? "[]" : "");
+  for (const auto& b : s.boundaries) emit_boundary(o, b);
+}
+
+void emit_output(Lines& o, const OutputSpec& out) {
+  std::string fields;
+  for (const auto& f : out.fields) fields += (fields.empty() ? "" : ", ") + f;
+  o.line(0, "output");
+  o.line(1, "interval", yaml_real(out.interval));
+  o.line(1, "fields", "[" + fields + "]");
+  o.line(1, "surface", out.surface ? "true" : "false");
+}
+
+void emit_checkpoint(Lines& o, const CheckpointSpec& c) {
+  o.line(0, "checkpoint");
+  o.line(1, "every_steps", std::to_string(c.every_steps));
+  o.line(1, "every_seconds", yaml_real(c.every_seconds));
+  o.line(1, "keep", std::to_string(c.keep));
+}
+
+}  // namespace
+
+std::string emit_resolved_yaml(const Scene& scene) {
+  Lines o;
+  o.text() += "# Resolved scene: every key, defaults filled, overrides applied (docs/scene-format.md).\n";
+  o.line(0, "scene");
+  o.line(1, "name", quoted(scene.name));
+  o.line(1, "description", quoted(scene.description));
+  emit_time(o, scene.time);
+  emit_mesh(o, scene.mesh);
+  if (scene.solid) emit_solid(o, *scene.solid);
+  emit_output(o, scene.output);
+  emit_checkpoint(o, scene.checkpoint);
+  return std::move(o.text());
+}
+
+std::string fnv1a64_hex(std::string_view text) {
+  uint64_t h = 14695981039346656037ull;  // FNV-1a 64 offset basis
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;  // FNV 64 prime
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace rift

@@ -1,0 +1,140 @@
+#include "engine/scene/scene_overrides.hpp"
+
+#include <cctype>
+
+namespace rift {
+namespace {
+
+// One step of an override path: a key, then zero or more list indices.
+struct PathStep {
+  std::string key;
+  std::vector<size_t> indices;
+};
+
+const char* kSyntax = "key.path=value, e.g. solid.materials[0].density=3000";
+
+bool is_key_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+}
+
+// Parses "a.b[1].c"; nullopt when it is not of that form.
+std::optional<std::vector<PathStep>> parse_path(const std::string& text) {
+  std::vector<PathStep> steps;
+  size_t i = 0;
+  while (true) {
+    PathStep step;
+    while (i < text.size() && is_key_char(text[i])) step.key += text[i++];
+    if (step.key.empty()) return std::nullopt;
+    while (i < text.size() && text[i] == '[') {
+      const size_t close = text.find(']', i);
+      if (close == std::string::npos || close == i + 1) return std::nullopt;
+      const std::string digits = text.substr(i + 1, close - i - 1);
+      for (char c : digits)
+        if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
+      step.indices.push_back(std::stoul(digits));
+      i = close + 1;
+    }
+    steps.push_back(std::move(step));
+    if (i == text.size()) return steps;
+    if (text[i] != '.') return std::nullopt;
+    ++i;
+  }
+}
+
+// Walks one override path, creating what is missing. Reports and returns null when the tree is in the way.
+class OverrideWalker {
+ public:
+  OverrideWalker(ReadContext& ctx, SourceLocation where) : ctx_(ctx), where_(std::move(where)) {}
+
+  YamlNode* walk(YamlNode& root, const std::vector<PathStep>& steps) {
+    YamlNode* node = &root;
+    for (const auto& step : steps) {
+      node = enter_key(*node, step.key);
+      if (!node) return nullptr;
+      for (size_t index : step.indices) {
+        node = enter_index(*node, index);
+        if (!node) return nullptr;
+      }
+    }
+    return node;
+  }
+
+ private:
+  YamlNode* enter_key(YamlNode& node, const std::string& key) {
+    if (node.kind == YamlNode::Kind::null) {
+      node.kind = YamlNode::Kind::mapping;  // "creates missing mappings"
+      node.where = where_;
+    }
+    if (node.kind != YamlNode::Kind::mapping) {
+      ctx_.error(where_, path_, "a mapping to set '" + key + "' in", describe_found(node));
+      return nullptr;
+    }
+    path_ += (path_.empty() ? "" : ".") + key;
+    for (auto& e : node.entries)
+      if (e.key == key) return &e.value;
+    YamlEntry entry;
+    entry.key = key;
+    entry.key_where = where_;
+    entry.value.where = where_;
+    node.entries.push_back(std::move(entry));
+    return &node.entries.back().value;
+  }
+
+  YamlNode* enter_index(YamlNode& node, size_t index) {
+    if (node.kind == YamlNode::Kind::null) {
+      node.kind = YamlNode::Kind::sequence;  // a missing list, created like a missing mapping
+      node.where = where_;
+    }
+    const size_t size = node.kind == YamlNode::Kind::sequence ? node.items.size() : 0;
+    if (node.kind != YamlNode::Kind::sequence || index > size) {
+      ctx_.error(
+          where_, path_ + "[" + std::to_string(index) + "]",
+          node.kind == YamlNode::Kind::sequence
+              ? "an index <= " + std::to_string(size) + " (the list has " + std::to_string(size) +
+                    " items; index " + std::to_string(size) + " appends one)"
+              : "a list to index into",
+          node.kind == YamlNode::Kind::sequence ? "index " + std::to_string(index) : describe_found(node));
+      return nullptr;
+    }
+    path_ += "[" + std::to_string(index) + "]";
+    if (index == size) {
+      node.items.emplace_back();
+      node.items.back().where = where_;
+    }
+    return &node.items[index];
+  }
+
+  ReadContext& ctx_;
+  SourceLocation where_;
+  std::string path_;
+};
+
+void apply_override(YamlNode& root, const std::string& text, ReadContext& ctx) {
+  const SourceLocation where{"--set " + text, 0, 0};
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos) {
+    ctx.error(where, "", kSyntax, "no '=' in '" + text + "'");
+    return;
+  }
+  const auto steps = parse_path(text.substr(0, eq));
+  if (!steps) {
+    ctx.error(where, "", kSyntax, "the key path '" + text.substr(0, eq) + "'");
+    return;
+  }
+  YamlParseResult value = parse_yaml_tree(text.substr(eq + 1), where.file, /*override_origin=*/true);
+  if (value.error) {
+    value.error->key_path = text.substr(0, eq);
+    ctx.error(where, value.error->key_path, "a YAML value after '='", value.error->found);
+    return;
+  }
+  YamlNode* target = OverrideWalker(ctx, where).walk(root, *steps);
+  if (target) *target = std::move(value.root);
+}
+
+}  // namespace
+
+void apply_overrides(YamlNode& root, const std::vector<std::string>& overrides, ReadContext& ctx) {
+  for (const auto& text : overrides) apply_override(root, text, ctx);
+}
+
+}  // namespace rift

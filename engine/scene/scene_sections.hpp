@@ -1,0 +1,20 @@
+#pragma once
+// Readers of the top-level sections of a scene file, one function each, so a new section (fluid,
+// contact, ...) is one more function here and one more line in read_scene_tree (load_scene.cpp).
+// Each reads every key of its section through `sec` and calls sec.finish().
+#include <string>
+
+#include "engine/scene/scene.hpp"
+#include "engine/scene/yaml_reader.hpp"
+
+namespace rift {
+
+void read_scene_section(MapReader& sec, Scene& scene);  // name, description
+TimeSpec read_time_section(MapReader& sec);
+// Relative mesh.file paths are resolved against `base_dir` (the scene file's folder).
+MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir);
+SolidSpec read_solid_section(MapReader& sec);
+OutputSpec read_output_section(MapReader& sec);
+CheckpointSpec read_checkpoint_section(MapReader& sec);
+
+}  // namespace rift

@@ -61,8 +61,10 @@ void round_trip(const std::filesystem::path& file, size_t rows, int components) 
   EXPECT_EQ(info.components, components);
   const std::vector<T> back = h5.read<T>("group/sub/data");
   ASSERT_EQ(back.size(), values.size());
-  EXPECT_EQ(std::memcmp(back.data(), values.data(), values.size() * sizeof(T)), 0)
-      << element_type_name(element_type_of<T>()) << " " << rows << " x " << components;
+  if (!values.empty()) {  // memcmp must not see the null data() of an empty vector
+    EXPECT_EQ(std::memcmp(back.data(), values.data(), values.size() * sizeof(T)), 0)
+        << element_type_name(element_type_of<T>()) << " " << rows << " x " << components;
+  }
 }
 
 template <class T>

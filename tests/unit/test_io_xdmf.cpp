@@ -8,7 +8,6 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <sstream>
 
 #include "engine/core/error.hpp"
@@ -85,7 +84,7 @@ struct StepData {
   }
 };
 
-// ---- reading the index back with plain string/regex search ----
+// ---- reading the index back with plain string search ----
 
 struct Item {
   std::string dimensions, number_type, precision, file, path;
@@ -105,38 +104,52 @@ struct Grid {
   std::map<std::string, Attribute> attributes;
 };
 
-Item parse_item(const std::string& text) {
-  static const std::regex item_re(
-      R"re(<DataItem Dimensions="([^"]+)" NumberType="(\w+)" Precision="(\d)" Format="HDF">([^<:]+):([^<]+)</DataItem>)re");
-  std::smatch m;
-  EXPECT_TRUE(std::regex_search(text, m, item_re)) << text;
-  return {m[1], m[2], m[3], m[4], m[5]};
+// The value of attribute `name` in the tag that starts at `text[at]`.
+std::string xml_attr(const std::string& text, size_t at, const std::string& name) {
+  const size_t tag_end = text.find('>', at);
+  const size_t start = text.find(" " + name + "=\"", at);
+  if (start == std::string::npos || start > tag_end) return "(missing " + name + ")";
+  const size_t value = start + name.size() + 3;
+  return text.substr(value, text.find('"', value) - value);
 }
 
-// Every Uniform grid of the index, in document order (a uniform grid has no nested <Grid>).
+// The first <DataItem> at or after `at`: its attributes and its "file:path" text.
+Item parse_item(const std::string& text, size_t at) {
+  const size_t open = text.find("<DataItem", at);
+  EXPECT_NE(open, std::string::npos);
+  if (open == std::string::npos) return {};
+  const size_t body = text.find('>', open) + 1;
+  const std::string content = text.substr(body, text.find("</DataItem>", body) - body);
+  const size_t colon = content.find(':');
+  EXPECT_EQ(xml_attr(text, open, "Format"), "HDF");
+  return {xml_attr(text, open, "Dimensions"), xml_attr(text, open, "NumberType"),
+          xml_attr(text, open, "Precision"), content.substr(0, colon), content.substr(colon + 1)};
+}
+
+// Every Uniform grid of the index, in document order (a uniform grid has no nested <Grid>), read
+// with plain string search.
 std::vector<Grid> parse_index(const std::string& xml) {
-  static const std::regex grid_re(R"re(<Grid Name="([^"]+)" GridType="Uniform">([\s\S]*?)</Grid>)re");
-  static const std::regex time_re(R"re(<Time Value="([^"]+)"/>)re");
-  static const std::regex topo_re(
-      R"re(<Topology TopologyType="(\w+)" NumberOfElements="(\d+)">\s*(<DataItem[^>]*>[^<]*</DataItem>))re");
-  static const std::regex geo_re(R"re(<Geometry GeometryType="XYZ">\s*(<DataItem[^>]*>[^<]*</DataItem>))re");
-  static const std::regex attr_re(
-      R"re(<Attribute Name="([^"]+)" AttributeType="(\w+)" Center="(\w+)">\s*(<DataItem[^>]*>[^<]*</DataItem>))re");
   std::vector<Grid> grids;
-  for (std::sregex_iterator it(xml.begin(), xml.end(), grid_re), end; it != end; ++it) {
+  for (size_t at = xml.find("GridType=\"Uniform\""); at != std::string::npos;
+       at = xml.find("GridType=\"Uniform\"", at + 1)) {
+    const size_t open = xml.rfind("<Grid ", at);
+    const std::string block = xml.substr(open, xml.find("</Grid>", at) - open);
     Grid g;
-    g.name = (*it)[1];
-    const std::string body = (*it)[2];
-    std::smatch m;
-    if (std::regex_search(body, m, time_re)) g.time = std::stod(m[1]);
-    if (std::regex_search(body, m, topo_re)) {
-      g.topology = m[1];
-      g.elements = std::stoul(m[2]);
-      g.cells = parse_item(m[3]);
+    g.name = xml_attr(block, 0, "Name");
+    if (const size_t t = block.find("<Time "); t != std::string::npos)
+      g.time = std::stod(xml_attr(block, t, "Value"));
+    if (const size_t t = block.find("<Topology "); t != std::string::npos) {
+      g.topology = xml_attr(block, t, "TopologyType");
+      g.elements = std::stoul(xml_attr(block, t, "NumberOfElements"));
+      g.cells = parse_item(block, t);
     }
-    if (std::regex_search(body, m, geo_re)) g.points = parse_item(m[1]);
-    for (std::sregex_iterator a(body.begin(), body.end(), attr_re); a != end; ++a)
-      g.attributes[(*a)[1]] = {(*a)[2], (*a)[3], parse_item((*a)[4])};
+    if (const size_t t = block.find("<Geometry "); t != std::string::npos) {
+      EXPECT_EQ(xml_attr(block, t, "GeometryType"), "XYZ");
+      g.points = parse_item(block, t);
+    }
+    for (size_t a = block.find("<Attribute "); a != std::string::npos; a = block.find("<Attribute ", a + 1))
+      g.attributes[xml_attr(block, a, "Name")] = {xml_attr(block, a, "AttributeType"),
+                                                  xml_attr(block, a, "Center"), parse_item(block, a)};
     grids.push_back(std::move(g));
   }
   return grids;
@@ -164,6 +177,7 @@ void expect_item(const std::filesystem::path& dir, const Item& item, const std::
   ASSERT_EQ(info.rows, rows);
   ASSERT_EQ(info.components, components);
   const std::vector<T> back = h5.read<T>(item.path);
+  ASSERT_FALSE(expected.empty());
   EXPECT_EQ(std::memcmp(back.data(), expected.data(), expected.size() * sizeof(T)), 0);
 }
 

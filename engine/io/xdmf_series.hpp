@@ -7,14 +7,15 @@
 //                                      written only when the grid's mesh_revision changes
 //   dir/basename_<step:08>.h5          /<grid>/<field> for every field, /<grid>/points for moving grids
 //
-// XDMF version 2.0: ParaView 5.11 offers three readers for .xdmf ("XDMF Reader" built on libXdmf 2,
-// "Xdmf3ReaderS" and "Xdmf3ReaderT" built on libXdmf 3). libXdmf 3 still reads version-2 files, while
-// the libXdmf 2 reader predates the 3.0 format; 2.0 with the elements common to both (Temporal and
-// Spatial collections, Uniform grids, HDF DataItems, no XInclude) opens with whichever reader the user
-// picks, and matches what deal.II writes. The <Time> element is repeated on the spatial collection and
-// on each of its grids: libXdmf 2 selects a time step by the collection's time and lists the leaves'.
+// XDMF version 2.0: ParaView 5.11 offers three readers for .xdmf ("XDMF Reader", built on libXdmf 2,
+// and "Xdmf3ReaderS"/"Xdmf3ReaderT", built on libXdmf 3). libXdmf 3 reads version-2 files (checked
+// with Debian's libxdmf3), while the libXdmf 2 reader predates the 3.0 format; 2.0 restricted to what
+// both know (Temporal and Spatial collections, Uniform grids, HDF DataItems, no XInclude) opens with
+// whichever reader the user picks, and is what deal.II writes. <Time> sits on each spatial collection
+// and is repeated on its grids, so a reader taking the time from either level sees the same value.
 //
-// Grids with no cells are left out of an output's index entry (readers reject zero-size HDF items).
+// A grid with no cells (e.g. joints before the first crack) is left out of that output's index
+// entry: there is nothing to draw, and zero-size HDF DataItems are an edge case best kept from readers.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -48,7 +49,8 @@ struct XdmfGrid {
   const int32_t* cells;  // connectivity, 0-based
   size_t cell_count;
   uint64_t mesh_revision;  // the series rewrites connectivity only when this changes
-  bool points_move;        // true: geometry written with every output; false: with the mesh
+  bool points_move;        // true: geometry written with every output; false: with the mesh, so the
+                           // points may then change only together with mesh_revision
   std::vector<XdmfField> fields;
 };
 

@@ -1,0 +1,91 @@
+#include "engine/io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include "engine/core/error.hpp"
+
+namespace rift {
+namespace {
+
+[[noreturn]] void fail(const std::string& what, const std::filesystem::path& path, int err) {
+  throw Error(what + " '" + path.string() + "': " + std::strerror(err));
+}
+
+// fsync through a fresh descriptor: Linux flushes the file's dirty pages regardless of which
+// descriptor wrote them, so this also covers files written by HDF5 or an ofstream.
+void fsync_path(const std::filesystem::path& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) fail("cannot open for fsync", path, errno);
+  if (::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    // Some file systems (e.g. certain network mounts) refuse fsync on directories; the data is
+    // still written, only the durability guarantee is weaker.
+    if ((flags & O_DIRECTORY) && (err == EINVAL || err == EBADF)) return;
+    fail("cannot fsync", path, err);
+  }
+  ::close(fd);
+}
+
+}  // namespace
+
+AtomicPath::AtomicPath(std::filesystem::path target) : target_(std::move(target)) {
+  temp_ = target_;
+  temp_ += ".tmp-" + std::to_string(::getpid());
+}
+
+AtomicPath::~AtomicPath() {
+  if (!committed_) {
+    std::error_code ignored;
+    std::filesystem::remove(temp_, ignored);
+  }
+}
+
+void AtomicPath::commit() {
+  if (committed_) return;
+  fsync_path(temp_, O_RDONLY);
+  if (::rename(temp_.c_str(), target_.c_str()) != 0)
+    throw Error("cannot rename '" + temp_.string() + "' to '" + target_.string() +
+                "': " + std::strerror(errno));
+  committed_ = true;
+  std::filesystem::path dir = target_.parent_path();
+  if (dir.empty()) dir = ".";
+  fsync_path(dir, O_RDONLY | O_DIRECTORY);
+}
+
+bool AtomicPath::is_temp_name(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  const auto at = name.rfind(".tmp-");
+  if (at == std::string::npos || at + 5 == name.size()) return false;
+  for (size_t i = at + 5; i < name.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return false;
+  return true;
+}
+
+void write_text_atomic(const std::filesystem::path& path, std::string_view text) {
+  AtomicPath atomic(path);
+  const int fd = ::open(atomic.temp().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot create", atomic.temp(), errno);
+  const char* p = text.data();
+  size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      fail("cannot write", atomic.temp(), err);
+    }
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  if (::close(fd) != 0) fail("cannot close", atomic.temp(), errno);
+  atomic.commit();
+}
+
+}  // namespace rift

@@ -1,0 +1,40 @@
+#pragma once
+// Crash-safe file replacement. Every output file (HDF5, XDMF index, JSON) is written to a temporary
+// sibling `<target>.tmp-<pid>`, flushed to disk and renamed over the target, so a run killed at any
+// moment leaves either the previous complete file or the new complete file, never a torn one.
+// rename(2) is atomic only within one file system, which the sibling temp guarantees.
+#include <filesystem>
+#include <string_view>
+
+namespace rift {
+
+class AtomicPath {
+ public:
+  explicit AtomicPath(std::filesystem::path target);
+  AtomicPath(const AtomicPath&) = delete;
+  AtomicPath& operator=(const AtomicPath&) = delete;
+  // Removes the temporary file unless commit() succeeded.
+  ~AtomicPath();
+
+  const std::filesystem::path& target() const { return target_; }
+  // Where the caller writes; the file may or may not exist yet.
+  const std::filesystem::path& temp() const { return temp_; }
+
+  // fsyncs the temp file, renames it over the target and fsyncs the directory (so the rename itself
+  // survives a power cut). The temp file must be closed by the writer first. Throws rift::Error.
+  void commit();
+  bool committed() const { return committed_; }
+
+  // True for names produced by temp(): "anything.tmp-<digits>".
+  static bool is_temp_name(const std::filesystem::path& path);
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temp_;
+  bool committed_ = false;
+};
+
+// Writes `text` to `path` through an AtomicPath.
+void write_text_atomic(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace rift

@@ -1,0 +1,249 @@
+#include "engine/io/checkpoint.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <set>
+
+#include "engine/core/error.hpp"
+#include "engine/io/atomic_file.hpp"
+#include "engine/io/hdf5_file.hpp"
+
+namespace rift {
+namespace {
+
+// HDF5 link names cannot contain '/', and "." names the group itself.
+void check_name(const std::string& kind, const std::string& name) {
+  if (name.empty() || name == "." || name.find('/') != std::string::npos)
+    throw Error("cannot checkpoint " + kind + " '" + name +
+                "': names must be non-empty, not '.', and contain no '/'");
+}
+
+std::string table_group(const std::string& table) {
+  return "/tables/" + table;
+}
+
+std::string describe(ElementType type, int components) {
+  return std::string(element_type_name(type)) + " x " + std::to_string(components);
+}
+
+// What read_checkpoint will do to one table, decided before anything in the store changes.
+struct TablePlan {
+  Table* table;
+  size_t rows;
+};
+
+std::vector<TablePlan> plan_restore(const H5File& h5, Store& store) {
+  const std::string file = h5.path().string();
+  const std::vector<std::string> stored_tables = h5.children("/tables");
+  const std::set<std::string> stored(stored_tables.begin(), stored_tables.end());
+  for (const auto& t : store.tables())
+    if (!stored.count(t->name()))
+      throw Error("checkpoint " + file + " has no table '" + t->name() +
+                  "', which this run defines (was the checkpoint written from another scene?)");
+
+  std::vector<TablePlan> plan;
+  for (const std::string& name : stored_tables) {
+    if (!store.has(name))
+      throw Error("checkpoint " + file + " holds table '" + name + "', which this run does not define");
+    Table& table = store.table(name);
+    const std::string group = table_group(name);
+    const int64_t rows = h5.int_attr(group, "rows");
+    if (rows < 0) throw Error("checkpoint " + file + ": table '" + name + "' has a negative row count");
+
+    const std::vector<std::string> stored_columns = h5.children(group);
+    const std::set<std::string> columns(stored_columns.begin(), stored_columns.end());
+    for (const auto& c : table.columns())
+      if (!columns.count(c->name()))
+        throw Error("checkpoint " + file + " has no column '" + c->key() + "', which this run defines");
+    for (const std::string& column : stored_columns) {
+      const std::string key = name + "." + column;
+      if (!table.has(column))
+        throw Error("checkpoint " + file + " holds column '" + key + "', which this run does not define");
+      const Column& c = table.column(column);
+      const std::string dataset = group + "/" + column;
+      const H5DatasetInfo info = h5.info(dataset);
+      const auto declared = element_type_from_name(h5.string_attr(dataset, "type"));
+      const int64_t declared_components = h5.int_attr(dataset, "components");
+      if (!declared || *declared != info.type || declared_components != info.components)
+        throw Error("checkpoint " + file + ": column '" + key + "' is inconsistent (attributes say " +
+                    h5.string_attr(dataset, "type") + " x " + std::to_string(declared_components) +
+                    ", data is " + describe(info.type, info.components) + ")");
+      if (info.type != c.type() || info.components != c.components())
+        throw Error("checkpoint " + file + ": column '" + key + "' is " +
+                    describe(info.type, info.components) + " in the checkpoint but " +
+                    describe(c.type(), c.components()) +
+                    " in this run (the engine or scene changed since the checkpoint was written)");
+      if (info.rows != static_cast<size_t>(rows))
+        throw Error("checkpoint " + file + ": column '" + key + "' has " + std::to_string(info.rows) +
+                    " rows, its table says " + std::to_string(rows));
+    }
+    plan.push_back({&table, static_cast<size_t>(rows)});
+  }
+  return plan;
+}
+
+}  // namespace
+
+void write_checkpoint(const std::filesystem::path& file, const Store& store, const CheckpointMeta& meta) {
+  AtomicPath atomic(file);
+  H5File h5(atomic.temp(), H5File::Mode::truncate);
+  h5.set_int_attr("/", "format_version", checkpoint_format_version);
+  h5.set_string_attr("/", "rift_version", meta.rift_version);
+  h5.set_string_attr("/", "scene_hash", meta.scene_hash);
+  h5.set_int_attr("/", "step", meta.step);
+  h5.set_double_attr("/", "time", meta.time);
+  h5.set_double_attr("/", "dt", meta.dt);
+  h5.write_string("/scene", meta.resolved_scene);
+  h5.create_groups("/scalars");
+  for (const auto& [key, value] : meta.scalars) h5.set_double_attr("/scalars", key, value);
+  h5.create_groups("/integers");
+  for (const auto& [key, value] : meta.integers) h5.set_int_attr("/integers", key, value);
+
+  h5.create_groups("/tables");
+  for (const auto& table : store.tables()) {
+    check_name("table", table->name());
+    const std::string group = table_group(table->name());
+    h5.create_groups(group);
+    h5.set_int_attr(group, "rows", static_cast<int64_t>(table->size()));
+    for (const auto& column : table->columns()) {
+      check_name("column of table " + table->name(), column->name());
+      const std::string dataset = group + "/" + column->name();
+      h5.write(dataset, column->type(), column->data(), column->rows(), column->components());
+      h5.set_string_attr(dataset, "type", element_type_name(column->type()));
+      h5.set_int_attr(dataset, "components", column->components());
+    }
+  }
+  h5.close();
+  atomic.commit();
+}
+
+CheckpointMeta read_checkpoint(const std::filesystem::path& file, Store& store) {
+  H5File h5(file, H5File::Mode::read);
+  if (!h5.has_attr("/", "format_version"))
+    throw Error("checkpoint " + file.string() + " is not a Rift checkpoint (no format_version attribute)");
+  const int64_t version = h5.int_attr("/", "format_version");
+  if (version != checkpoint_format_version)
+    throw Error("checkpoint " + file.string() + " has format_version " + std::to_string(version) +
+                ", this build of Rift reads format_version " + std::to_string(checkpoint_format_version));
+
+  CheckpointMeta meta;
+  meta.step = h5.int_attr("/", "step");
+  meta.time = h5.double_attr("/", "time");
+  meta.dt = h5.double_attr("/", "dt");
+  meta.scene_hash = h5.string_attr("/", "scene_hash");
+  meta.rift_version = h5.string_attr("/", "rift_version");
+  meta.resolved_scene = h5.read_string("/scene");
+  for (const std::string& key : h5.attr_names("/scalars"))
+    meta.scalars[key] = h5.double_attr("/scalars", key);
+  for (const std::string& key : h5.attr_names("/integers"))
+    meta.integers[key] = h5.int_attr("/integers", key);
+
+  for (const TablePlan& p : plan_restore(h5, store)) {
+    p.table->resize(p.rows);
+    for (const auto& column : p.table->columns())
+      h5.read(table_group(p.table->name()) + "/" + column->name(), column->type(), column->data(), p.rows,
+              column->components());
+  }
+  return meta;
+}
+
+CheckpointSet::CheckpointSet(std::filesystem::path out_dir, int keep)
+    : dir_(std::move(out_dir) / "checkpoints"), keep_(keep) {
+  if (keep < 1)
+    throw Error(
+        "checkpoints: keep must be at least 1 (the newest checkpoint is what a restart reads), found " +
+        std::to_string(keep));
+}
+
+std::filesystem::path CheckpointSet::path_for(int64_t step) const {
+  char name[48];
+  std::snprintf(name, sizeof name, "ckpt_%010lld.h5", static_cast<long long>(step));
+  return dir_ / name;
+}
+
+namespace {
+
+// "ckpt_<10+ digits>.h5" -> step; anything else (temp files included) -> -1.
+int64_t step_of(const std::string& name) {
+  constexpr std::string_view prefix = "ckpt_", suffix = ".h5";
+  if (name.size() < prefix.size() + 10 + suffix.size() || !name.starts_with(prefix) ||
+      !name.ends_with(suffix))
+    return -1;
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.size() > 18 ||
+      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return -1;
+  return std::stoll(digits);
+}
+
+// A temp file "<...>.tmp-<pid>" whose writer process is gone (ESRCH); our own and live ones stay.
+bool is_orphan_temp(const std::filesystem::path& path) {
+  if (!AtomicPath::is_temp_name(path)) return false;
+  const std::string name = path.filename().string();
+  const long pid = std::stol(name.substr(name.rfind(".tmp-") + 5));
+  if (pid <= 0 || pid == ::getpid()) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+}  // namespace
+
+std::vector<std::pair<int64_t, std::filesystem::path>> CheckpointSet::list() const {
+  std::vector<std::pair<int64_t, std::filesystem::path>> out;
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator(dir_, ec);
+       !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+    const int64_t step = step_of(it->path().filename().string());
+    if (step >= 0 && it->is_regular_file(ec)) out.emplace_back(step, it->path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::filesystem::path CheckpointSet::write(const Store& store, const CheckpointMeta& meta) {
+  if (meta.step < 0) throw Error("checkpoint step " + std::to_string(meta.step) + " is negative");
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec) throw Error("cannot create checkpoint directory '" + dir_.string() + "': " + ec.message());
+  const std::filesystem::path file = path_for(meta.step);
+  write_checkpoint(file, store, meta);
+  prune();
+  return file;
+}
+
+void CheckpointSet::prune() const {
+  const auto all = list();
+  for (size_t i = 0; i + keep_ < all.size(); ++i) {
+    std::error_code ec;
+    std::filesystem::remove(all[i].second, ec);
+    if (ec) throw Error("cannot delete old checkpoint '" + all[i].second.string() + "': " + ec.message());
+  }
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator(dir_, ec);
+       !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
+    std::error_code ignored;  // a leftover another process removes first is not an error
+    if (it->path().filename().string().starts_with("ckpt_") && is_orphan_temp(it->path()))
+      std::filesystem::remove(it->path(), ignored);
+  }
+}
+
+std::optional<std::filesystem::path> CheckpointSet::latest() const {
+  const auto all = list();
+  for (auto it = all.rbegin(); it != all.rend(); ++it) {
+    try {
+      H5File h5(it->second, H5File::Mode::read);
+      if (h5.has_attr("/", "format_version") &&
+          h5.int_attr("/", "format_version") == checkpoint_format_version && h5.has_attr("/", "step") &&
+          h5.is_group("/tables"))
+        return it->second;
+    } catch (const Error&) {
+      // unreadable (truncated, garbage, foreign): fall back to the next older one
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace rift

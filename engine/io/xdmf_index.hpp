@@ -1,0 +1,22 @@
+#pragma once
+// Text forms of an XdmfSeries' entries: the XDMF 2.0 index ParaView reads and the JSON sidecar a
+// restart reloads. Pure functions of the entries, so the index can always be regenerated whole.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "engine/io/xdmf_series.hpp"
+
+namespace rift::xdmf {
+
+// The complete .xdmf document; `title` names the temporal collection.
+std::string render_index(const std::string& title, const std::vector<XdmfSeries::Entry>& entries);
+
+nlohmann::json entries_to_json(const std::vector<XdmfSeries::Entry>& entries);
+// Throws rift::Error naming `source` (the sidecar's path) when the JSON does not describe entries.
+std::vector<XdmfSeries::Entry> entries_from_json(const nlohmann::json& json, const std::string& source);
+
+// "Float"/"Int"/"UInt"/"UChar" and the byte size, as XDMF's NumberType and Precision attributes.
+const char* number_type(ElementType type);
+
+}  // namespace rift::xdmf

@@ -1,0 +1,106 @@
+// Atomic file replacement and the run summary JSON.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "engine/core/error.hpp"
+#include "engine/io/atomic_file.hpp"
+#include "engine/io/run_summary.hpp"
+#include "tests/unit/test_io_temp_dir.hpp"
+
+namespace rift {
+namespace {
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+size_t file_count(const std::filesystem::path& dir) {
+  size_t n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+  return n;
+}
+
+TEST(AtomicFile, WriteReplacesContentAndLeavesNoTemp) {
+  test::TempDir dir;
+  const auto file = dir / "a.txt";
+  write_text_atomic(file, "first");
+  write_text_atomic(file, std::string("second\0with nul", 15));
+  EXPECT_EQ(slurp(file), std::string("second\0with nul", 15));
+  EXPECT_EQ(file_count(dir.path()), 1u);
+}
+
+TEST(AtomicFile, UncommittedWriteKeepsPreviousFileAndRemovesTemp) {
+  test::TempDir dir;
+  const auto file = dir / "state.txt";
+  write_text_atomic(file, "good");
+  {
+    AtomicPath atomic(file);
+    EXPECT_TRUE(AtomicPath::is_temp_name(atomic.temp()));
+    std::ofstream(atomic.temp()) << "half-writ";  // the run "dies" before commit()
+    EXPECT_EQ(slurp(file), "good");
+  }
+  EXPECT_EQ(slurp(file), "good");
+  EXPECT_EQ(file_count(dir.path()), 1u);
+}
+
+TEST(AtomicFile, ErrorsNameThePathAndReason) {
+  test::TempDir dir;
+  const auto file = dir / "missing-dir" / "x.txt";
+  try {
+    write_text_atomic(file, "x");
+    FAIL() << "expected rift::Error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find((dir / "missing-dir").string()), std::string::npos) << msg;
+    EXPECT_NE(msg.find("No such file or directory"), std::string::npos) << msg;
+  }
+}
+
+TEST(AtomicFile, TempNamesAreRecognised) {
+  EXPECT_TRUE(AtomicPath::is_temp_name("dir/ckpt_0000000010.h5.tmp-1234"));
+  EXPECT_FALSE(AtomicPath::is_temp_name("dir/ckpt_0000000010.h5"));
+  EXPECT_FALSE(AtomicPath::is_temp_name("x.tmp-"));
+  EXPECT_FALSE(AtomicPath::is_temp_name("x.tmp-12a"));
+}
+
+TEST(RunSummary, DottedPathsBuildNestedObjects) {
+  RunSummary summary;
+  summary.set("scene.name", "notched_block");
+  summary.set("timing.solid.seconds", 1.5);
+  summary.set("timing.solid.calls", 20);
+  summary.set("timing.fluid", nlohmann::json::array({1, 2}));
+  summary.root()["warnings"] = nlohmann::json::array();
+  EXPECT_EQ(summary.root()["timing"]["solid"]["seconds"], 1.5);
+  EXPECT_EQ(summary.root()["timing"]["solid"]["calls"], 20);
+  EXPECT_EQ(summary.root()["scene"]["name"], "notched_block");
+
+  EXPECT_THROW(summary.set("timing.solid.seconds.max", 2.0), Error);  // seconds is a number
+  EXPECT_THROW(summary.set("a..b", 1), Error);
+  EXPECT_THROW(summary.set("", 1), Error);
+}
+
+TEST(RunSummary, WritesPrettyJsonThatParsesBack) {
+  test::TempDir dir;
+  RunSummary summary;
+  summary.set("final.step", 1200);
+  summary.set("final.time", 0.1);
+  summary.set("note", std::string("bad utf8 \xff here"));
+  const auto file = dir / "run_summary.json";
+  summary.write(file);
+  const std::string text = slurp(file);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  EXPECT_NE(text.find("\n  \"final\": {"), std::string::npos) << text;  // 2-space indentation
+  const auto parsed = nlohmann::json::parse(text);
+  EXPECT_EQ(parsed["final"]["step"], 1200);
+  EXPECT_EQ(parsed["final"]["time"].get<double>(), 0.1);  // nlohmann prints doubles round-trip exact
+  EXPECT_EQ(file_count(dir.path()), 1u);
+}
+
+}  // namespace
+}  // namespace rift

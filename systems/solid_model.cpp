@@ -42,6 +42,19 @@ void principal_values(const double* s, double* out) {
   out[1] = 3 * q - out[0] - out[2];
 }
 
+double max_face_area(std::span<const double> x, const int32_t* t) {
+  double best = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double* a = &x[3 * t[(k + 1) % 4]];
+    const double* b = &x[3 * t[(k + 2) % 4]];
+    const double* c = &x[3 * t[(k + 3) % 4]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    best = std::max(best, 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+  }
+  return best;
+}
+
 bool wants(const std::vector<std::string>& fields, const char* name) {
   return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
 }
@@ -230,35 +243,29 @@ void SolidModel::compute_mass_and_stable_dt() {
   auto inv_mass = nodes.span<double>("inv_mass");
   for (size_t n = 0; n < nodes.size(); ++n) inv_mass[n] = mass[n] > 0 ? 1.0 / mass[n] : 0.0;
 
-  // Per-material wave speed and damping. eta = 2 h beta sqrt(E rho) with h the material's mean element
-  // size (femdem.md 1d); the smallest element then sees the largest damping ratio, which bounds dt.
+  // Per-material Lame constants and viscous coefficient eta = 2 h beta sqrt(E rho) (femdem.md 1d), with h
+  // the material's mean smallest altitude: beta is then the damping fraction at the typical element.
   const auto x0 = nodes.span<const double>("x0");
-  std::vector<double> altitude(tets.size());
-  kernels::tet_min_altitudes(x0, conn, altitude, 0, tets.size());
   const size_t nm = spec_.materials.size();
-  std::vector<double> h_sum(nm, 0.0), h_min(nm, INFINITY);
+  std::vector<double> h_sum(nm, 0.0), density(nm);
   std::vector<size_t> h_count(nm, 0);
   for (size_t e = 0; e < tets.size(); ++e) {
-    h_sum[material[e]] += altitude[e];
-    h_min[material[e]] = std::min(h_min[material[e]], altitude[e]);
+    h_sum[material[e]] += 3.0 * vol[e] / max_face_area(x0, &conn[4 * e]);
     ++h_count[material[e]];
   }
   tet_materials_.resize(nm);
-  std::vector<double> wave_speed(nm), damping_ratio(nm);
   for (size_t m = 0; m < nm; ++m) {
     const MaterialSpec& s = spec_.materials[m];
     const double lambda = s.young * s.poisson / ((1 + s.poisson) * (1 - 2 * s.poisson));
     const double mu = s.young / (2 * (1 + s.poisson));
     const double h_mean = h_count[m] ? h_sum[m] / h_count[m] : 0.0;
-    const double eta = 2.0 * h_mean * s.damping * std::sqrt(s.young * s.density);
-    tet_materials_[m] = {lambda, mu, eta};
-    wave_speed[m] = std::sqrt((lambda + 2 * mu) / s.density);
-    damping_ratio[m] = h_min[m] > 0 ? s.damping * h_mean / h_min[m] : 0.0;
+    tet_materials_[m] = {lambda, mu, 2.0 * h_mean * s.damping * std::sqrt(s.young * s.density)};
+    density[m] = s.density;
   }
+  // The stable step, and the tet that sets it (named in diagnostics).
   stable_dt_ = INFINITY;
   for (size_t e = 0; e < tets.size(); ++e) {
-    const int32_t m = material[e];
-    const double dt = kernels::damped_stable_step(altitude[e] / wave_speed[m], damping_ratio[m]);
+    const double dt = kernels::tet_damped_stable_step(x0, conn, material, tet_materials_, density, e, e + 1);
     if (dt < stable_dt_) stable_dt_ = dt, critical_tet_ = static_cast<int64_t>(e);
   }
 }

@@ -6,7 +6,7 @@
 
 #include "engine/core/table.hpp"
 #include "engine/schedule/system.hpp"
-#include "kernels/tet_force.hpp"
+#include "kernels/tet_forces.hpp"
 
 namespace rift {
 

@@ -1,0 +1,71 @@
+// The whole solid step through the engine (surface loads, tet forces, node integration, scheduled by
+// the step graph) on generated meshes, at 1 and 2 threads. Items are tet-steps: what a user's scene
+// costs per tet and step, schedule included. (The per-kernel benchmarks carry the byte models.)
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "bench/bench_common.hpp"
+#include "engine/scene/load_scene.hpp"
+#include "engine/simulation.hpp"
+
+namespace {
+
+// A clamped limestone block under an end traction, sized so the mesh has about `tets` tetrahedra.
+std::string block_scene(double tets) {
+  const double volume = 0.1 * 0.05 * 0.05;
+  // Delaunay-refined meshes have about 1 tet per 0.12 h^3 (h the target size): measured on this generator.
+  const double h = std::cbrt(volume * 0.12 / tets);
+  return "scene: {name: bench-solid}\n"
+         "time: {end: 1.0, safety: 0.5}\n"
+         "mesh:\n  generate: {box: [0.1, 0.05, 0.05], size_min: " + std::to_string(h) + ", size_max: " +
+         std::to_string(h) + "}\n"
+         "solid:\n  materials: [{name: rock, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05}]\n"
+         "  boundaries:\n    - {surface: xmin, type: fixed}\n"
+         "    - {surface: xmax, type: traction, direction: [1, 0, 0], value: 1.0e6}\n";
+}
+
+struct Cached {
+  double target = 0;
+  int threads = 0;
+  std::unique_ptr<rift::Simulation> sim;
+};
+
+rift::Simulation& simulation(double tets, int threads) {
+  static Cached cache;
+  if (!cache.sim || cache.target != tets || cache.threads != threads) {
+    cache.sim.reset();
+    auto result = rift::read_scene_text(block_scene(tets), "bench_solid_step", ".");
+    if (!result.scene) throw std::runtime_error("bench scene invalid: " + result.errors.front().format());
+    rift::RunOptions o;
+    o.write_output = false;
+    o.progress = false;
+    o.threads = threads;
+    spdlog::set_level(spdlog::level::warn);
+    cache.sim = std::make_unique<rift::Simulation>(std::move(*result.scene), o);
+    cache.target = tets;
+    cache.threads = threads;
+  }
+  return *cache.sim;
+}
+
+void BM_SolidStep(benchmark::State& state) {
+  const double target = rift::bench::tiny() ? 1e3 : static_cast<double>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  rift::Simulation& sim = simulation(target, threads);
+  const size_t tets = sim.world().store.table("solid_tet").size();
+  for (auto _ : state) sim.step_once();
+  state.counters["tets"] = static_cast<double>(tets);
+  state.counters["threads"] = threads;
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * tets));
+}
+
+}  // namespace
+
+BENCHMARK(BM_SolidStep)
+    ->ArgsProduct({{10000, 100000, 1000000}, {1, 2}})
+    ->ArgNames({"tets", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();

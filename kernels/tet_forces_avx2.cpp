@@ -15,23 +15,33 @@ namespace rift::kernels {
 namespace {
 
 struct Group {
-  size_t tet[4];  // tet index per lane (the last real tet repeated in spare lanes)
-  int count;      // real lanes
-  V4 x[4][3], v[4][3], dm[9];
+  size_t tet[4];                 // tet index per lane (the last real tet repeated in spare lanes)
+  int count;                     // real lanes
+  V4 ex[3][3], ev[3][3], dm[9];  // position and velocity edges p[c+1] - p[0], Dm^-1
   tet_law::Constants<V4> c;
 };
 
 void load_group(const TetForceArgs& a, size_t first, int count, Group& g) {
   g.count = count;
   for (int l = 0; l < 4; ++l) g.tet[l] = first + static_cast<size_t>(l < count ? l : count - 1);
-  for (int n = 0; n < 4; ++n) {
-    size_t node[4];
+  auto nodes_of_corner = [&](int n, size_t node[4]) {
     for (int l = 0; l < 4; ++l) node[l] = static_cast<size_t>(a.tet_nodes[4 * g.tet[l] + n]);
-    simd::load_xyz(a.x.data(), node, g.x[n]);
-    simd::load_xyz(a.v.data(), node, g.v[n]);
+  };
+  size_t node[4];
+  nodes_of_corner(0, node);
+  V4 x0[3], v0[3], x[3], v[3];
+  simd::load_xyz(a.x.data(), node, x0);
+  simd::load_xyz(a.v.data(), node, v0);
+  for (int n = 1; n < 4; ++n) {
+    nodes_of_corner(n, node);
+    simd::load_xyz(a.x.data(), node, x);
+    simd::load_xyz(a.v.data(), node, v);
+    for (int i = 0; i < 3; ++i) {
+      g.ex[n - 1][i] = x[i] - x0[i];
+      g.ev[n - 1][i] = v[i] - v0[i];
+    }
   }
-  simd::load_block4(a.dm_inv.data(), 9, 0, g.tet, g.dm);
-  simd::load_block4(a.dm_inv.data(), 9, 4, g.tet, g.dm + 4);
+  for (int k = 0; k < 8; k += 2) simd::load_pair(a.dm_inv.data(), 9, k, g.tet, g.dm[k], g.dm[k + 1]);
   g.dm[8] = simd::gather1(a.dm_inv.data() + 8, 9, g.tet);
   g.c.volume0 = simd::gather1(a.volume0.data(), 1, g.tet);
   const TetMaterial* m[4];
@@ -82,7 +92,7 @@ void count_inverted(const Group& g, V4 J, TetForceStatus& status) {
 
 void process_group(const TetForceArgs& a, Group& g, bool want_energy, TetForceStatus& status) {
   tet_law::Kinematics<V4> k;
-  tet_law::kinematics(g.x, g.dm, k);
+  tet_law::kinematics(g.ex, g.dm, k);
   count_inverted(g, k.J, status);
   const V4 zero = _mm256_setzero_pd();
   const V4 ok =
@@ -91,7 +101,7 @@ void process_group(const TetForceArgs& a, Group& g, bool want_energy, TetForceSt
   k.J = simd::select(ok, k.J, _mm256_set1_pd(1.0));
   k.j = simd::keep(ok, k.j);
   tet_law::Response<V4> r;
-  tet_law::response(k, g.v, g.dm, g.c, want_energy ? excess_log(k.j) : zero, want_energy, r);
+  tet_law::response(k, g.ev, g.dm, g.c, want_energy ? excess_log(k.j) : zero, want_energy, r);
   store_group(a, g, ok, r);
 }
 

@@ -38,7 +38,10 @@ TetForceStatus tet_forces_scalar(const TetForceArgs& args, size_t begin, size_t 
     for (int n = 0; n < 9; ++n) dm[n] = args.dm_inv[9 * t + n];
     const double volume0 = args.volume0[t];
     tet_law::Kinematics<double> k;
-    tet_law::kinematics(x, dm, k);
+    double ex[3][3], ev[3][3];
+    tet_law::edges(x, ex);
+    tet_law::edges(v, ev);
+    tet_law::kinematics(ex, dm, k);
     if (!(volume0 > 0.0) || !(k.J > 0.0)) {
       if (volume0 > 0.0 && status.inverted++ == 0) status.first_inverted = static_cast<int64_t>(t);
       write_zeros(args, t);
@@ -47,7 +50,7 @@ TetForceStatus tet_forces_scalar(const TetForceArgs& args, size_t begin, size_t 
     const TetMaterial& m = args.materials[static_cast<size_t>(args.material[t])];
     const tet_law::Constants<double> c{m.lambda, m.mu, m.eta, volume0};
     tet_law::Response<double> r;
-    tet_law::response(k, v, dm, c, want_energy ? tet_law::excess_log(k.j) : 0.0, want_energy, r);
+    tet_law::response(k, ev, dm, c, want_energy ? tet_law::excess_log(k.j) : 0.0, want_energy, r);
     write_response(args, t, r);
   }
   return status;

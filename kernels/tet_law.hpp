@@ -19,8 +19,7 @@ inline double splat<double>(double a) {
 
 template <class T>
 struct Kinematics {
-  T F[3][3];    // deformation gradient
-  T H[3][3];    // F - I
+  T H[3][3];    // displacement gradient F - I
   T cof[3][3];  // cofactor matrix of F, = J F^-T
   T q;          // I2(H) + det H, the higher-order part of J - 1
   T j;          // J - 1 = tr H + q
@@ -39,13 +38,18 @@ struct Response {
   T energy;       // W V0
 };
 
-// G = E Dm with E's columns the edges p_c - p_0 (x gives F, v gives F-dot).
+// Edge vectors e[c] = p[c+1] - p[0] of the corner positions or velocities p.
 template <class T>
-inline void edge_gradient(const T p[4][3], const T dm[9], T G[3][3]) {
-  for (int i = 0; i < 3; ++i) {
-    const T e0 = p[1][i] - p[0][i], e1 = p[2][i] - p[0][i], e2 = p[3][i] - p[0][i];
-    for (int k = 0; k < 3; ++k) G[i][k] = e0 * dm[k] + e1 * dm[3 + k] + e2 * dm[6 + k];
-  }
+inline void edges(const T p[4][3], T e[3][3]) {
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 3; ++i) e[c][i] = p[c + 1][i] - p[0][i];
+}
+
+// G = E Dm with E's columns the edges e[c] (position edges give F, velocity edges F-dot).
+template <class T>
+inline void edge_gradient(const T e[3][3], const T dm[9], T G[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) G[i][k] = e[0][i] * dm[k] + e[1][i] * dm[3 + k] + e[2][i] * dm[6 + k];
 }
 
 template <class T>
@@ -59,32 +63,40 @@ inline void cofactors(const T A[3][3], T C[3][3]) {
   }
 }
 
-// F, H, cof(F) and J; J - 1 = tr H + I2(H) + det H, each term formed from H without cancellation.
+// H, cof(F) and J from the position edges ex, all through H (F itself is never formed):
+//   J - 1 = tr H + I2(H) + det H,   cof(I + H) = (1 + tr H) I - H^T + cof(H),
+// each term free of cancellation, and cof(H) serves both.
 template <class T>
-inline void kinematics(const T x[4][3], const T dm[9], Kinematics<T>& k) {
-  edge_gradient(x, dm, k.F);
+inline void kinematics(const T ex[3][3], const T dm[9], Kinematics<T>& k) {
   const T one = splat<T>(1.0);
-  for (int i = 0; i < 3; ++i)
-    for (int m = 0; m < 3; ++m) k.H[i][m] = i == m ? k.F[i][m] - one : k.F[i][m];
-  cofactors(k.F, k.cof);
+  edge_gradient(ex, dm, k.H);
+  for (int i = 0; i < 3; ++i) k.H[i][i] = k.H[i][i] - one;
   T cH[3][3];
   cofactors(k.H, cH);
   const T det_h = k.H[0][0] * cH[0][0] + k.H[0][1] * cH[0][1] + k.H[0][2] * cH[0][2];
   const T i2 = cH[0][0] + cH[1][1] + cH[2][2];  // sum of the principal 2x2 minors
+  const T tr_h = k.H[0][0] + k.H[1][1] + k.H[2][2];
   k.q = i2 + det_h;
-  k.j = (k.H[0][0] + k.H[1][1] + k.H[2][2]) + k.q;
+  k.j = tr_h + k.q;
   k.J = one + k.j;
+  for (int i = 0; i < 3; ++i)
+    for (int m = 0; m < 3; ++m) k.cof[i][m] = cH[i][m] - k.H[m][i];
+  for (int i = 0; i < 3; ++i) k.cof[i][i] = k.cof[i][i] + (one + tr_h);
 }
 
 // j - ln(1 + j) by its Taylor series, for |j| < small_j: the omitted term is < 2|j|^9/11 relative (< 2e-19).
 // Larger |j| use j - log1p(j) directly (cancellation then costs at most a factor 2/|j| = 200).
 constexpr double small_j = 0.01;
-// j^2 (1/2 - j (1/3 - j (1/4 - ... - j/10))).
+// j^2 (1/2 - j/3 + j^2/4 - ... + j^8/10), the polynomial evaluated in Estrin's form (pairs, then pairs of
+// pairs) so its dependency chain is 4 multiply-adds long instead of 9.
 template <class T>
 inline T excess_log_series(T j) {
-  T s = splat<T>(1.0 / 10.0);
-  for (int n = 9; n >= 2; --n) s = splat<T>(1.0 / n) - j * s;
-  return j * j * s;
+  auto c = [](int n) { return splat<T>((n % 2 ? -1.0 : 1.0) / (n + 2)); };  // coefficient of j^n
+  const T j2 = j * j, j4 = j2 * j2;
+  const T p01 = c(0) + c(1) * j, p23 = c(2) + c(3) * j, p45 = c(4) + c(5) * j, p67 = c(6) + c(7) * j;
+  const T p03 = p01 + p23 * j2, p47 = p45 + p67 * j2;
+  const T p8 = c(8) * j4;
+  return j2 * (p03 + (p47 + p8) * j4);
 }
 inline double excess_log(double j) {
   return std::fabs(j) < small_j ? excess_log_series(j) : j - std::log1p(j);
@@ -99,13 +111,15 @@ inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3], const Cons
   const T shear = c.mu * inv_j;
   const T volumetric = splat<T>(0.5) * c.lambda * k.j * (splat<T>(2.0) + k.j) * inv_j;
   const T half_visc = splat<T>(0.5) * c.eta * inv_j;
+  auto l = [&](int a, int b) {  // (F-dot cof^T)_ab = J L_ab
+    return Fdot[a][0] * k.cof[b][0] + Fdot[a][1] * k.cof[b][1] + Fdot[a][2] * k.cof[b][2];
+  };
   for (int n = 0; n < 6; ++n) {
     const int a = row[n], b = col[n];
     const T bm =
         k.H[a][b] + k.H[b][a] + (k.H[a][0] * k.H[b][0] + k.H[a][1] * k.H[b][1] + k.H[a][2] * k.H[b][2]);
-    const T l_ab = Fdot[a][0] * k.cof[b][0] + Fdot[a][1] * k.cof[b][1] + Fdot[a][2] * k.cof[b][2];
-    const T l_ba = Fdot[b][0] * k.cof[a][0] + Fdot[b][1] * k.cof[a][1] + Fdot[b][2] * k.cof[a][2];
-    s[n] = shear * bm + half_visc * (l_ab + l_ba);
+    const T two_d = l(a, b) + l(b, a);  // 2 J D_ab
+    s[n] = shear * bm + half_visc * two_d;
     if (a == b) s[n] = s[n] + volumetric;
   }
 }
@@ -141,13 +155,13 @@ inline T strain_energy(const Kinematics<T>& k, T g, const Constants<T>& c) {
   return w * c.volume0;
 }
 
-// Everything after the kinematics; the caller has checked J > 0 (lanes where it is not are discarded).
-// g = j - ln J for the energy (ignored when want_energy is false).
+// Everything after the kinematics (ev: velocity edges); the caller has checked J > 0 (lanes where it is not
+// are discarded). g = j - ln J for the energy (ignored when want_energy is false).
 template <class T>
-inline void response(const Kinematics<T>& k, const T v[4][3], const T dm[9], const Constants<T>& c, T g,
+inline void response(const Kinematics<T>& k, const T ev[3][3], const T dm[9], const Constants<T>& c, T g,
                      bool want_energy, Response<T>& r) {
   T Fdot[3][3];
-  edge_gradient(v, dm, Fdot);
+  edge_gradient(ev, dm, Fdot);
   cauchy_stress(k, Fdot, c, r.stress);
   corner_forces(k, r.stress, dm, c.volume0, r.force);
   if (want_energy) r.energy = strain_energy(k, g, c);

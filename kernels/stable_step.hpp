@@ -1,12 +1,12 @@
 #pragma once
 // Critical time step of the explicit (central-difference) solid for 4-node tets.
 //
-// Elastic limit per tet (femdem.md 1d, "dt <= alpha h_min / c_p, c_p = sqrt((lambda + 2 mu)/rho)"):
+// Elastic limit per tet (femdem.md 1d, line 304: "dt <= alpha h_min / c_p, c_p = sqrt((lambda + 2 mu)/rho)"):
 //   dt_e = h / c_p,  h = smallest altitude = 3 V / (largest face area),  c_p = sqrt((lambda + 2 mu) / rho).
 // These functions return the limit itself (alpha = 1); the caller applies its safety factor alpha.
 //
-// Viscous reduction. femdem.md 1d gives only the size of the Y damping coefficient,
-// "eta = 2 h beta sqrt(E rho), 0 < beta < 1 (beta = 1 ≈ critical for the element's highest mode)".
+// Viscous reduction. femdem.md 1d gives no step formula for it, only the size of the Y damping coefficient
+// (line 321): "eta = 2 h beta sqrt(E rho), 0 < beta < 1 (beta = 1 ≈ critical for the element's highest mode)".
 // Turned into a step limit here [D]: the highest element mode has omega = 2 / dt_e; the term eta D acts on it
 // as a dashpot against the P-wave modulus M = lambda + 2 mu (Kelvin-Voigt), so its damping ratio is
 //   xi = omega eta / (2 M) = eta / (M dt_e).

@@ -164,7 +164,10 @@ RunResult Simulation::run() {
     result.time = time();
     result.wall_seconds = seconds_since(t0);
     result.stop_reason = e.what();
-    if (options_.write_output) write_summary(result);
+    if (options_.write_output) {
+      write_time_series();
+      write_summary(result);
+    }
     throw;
   }
   progress.finish();
@@ -185,6 +188,7 @@ void Simulation::write_output() {
   std::vector<XdmfGrid> grids;
   for (const auto& m : world_->models) m->output_grids(grids, scene_.output.fields);
   if (!grids.empty()) series_->write(time(), step_, grids);
+  write_time_series();
   ++outputs_written_;
   output_seconds_ += seconds_since(t0);
 }
@@ -197,6 +201,11 @@ void Simulation::record_metrics() {
   std::vector<double> values{static_cast<double>(step_), time()};
   for (const auto& [name, value] : row) values.push_back(value);
   metric_rows_.push_back(std::move(values));
+}
+
+// The time series is rewritten (atomically) with each field output and checkpoint, not on every
+// metrics row: an fsync per step would dominate small runs.
+void Simulation::write_time_series() const {
   std::string csv = "step,time";
   for (const auto& n : metric_names_) csv += "," + n;
   csv += "\n";
@@ -217,6 +226,7 @@ void Simulation::write_checkpoint() {
   meta.resolved_scene = scene_.resolved_yaml;
   meta.rift_version = build::version;
   meta.integers["outputs_written"] = outputs_written_;
+  write_time_series();
   const auto file = checkpoints_->write(world_->store, meta);
   checkpoint_seconds_ += seconds_since(t0);
   spdlog::debug("checkpoint {}", file.string());

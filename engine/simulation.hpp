@@ -58,6 +58,7 @@ class Simulation {
   void restart_from_latest();
   void write_output();
   void record_metrics();
+  void write_time_series() const;
   void write_checkpoint();
   void write_summary(const RunResult& result) const;
   void log_timing_table() const;

@@ -54,7 +54,8 @@ int run(const RunArgs& args) {
   auto scene = read_scene(args.scene);
   if (!scene) return 2;
   RunOptions options;
-  options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / scene->name : args.out_dir;
+  options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / scene->name
+                                        : std::filesystem::path(args.out_dir);
   options.threads = args.threads;
   options.restart_latest = args.restart == "latest";
   options.progress = !args.quiet;
@@ -110,7 +111,7 @@ int info() {
   std::printf("  nlohmann    %d.%d.%d\n", NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR,
               NLOHMANN_JSON_VERSION_PATCH);
   std::printf("  spdlog      %d.%d.%d\n", SPDLOG_VER_MAJOR, SPDLOG_VER_MINOR, SPDLOG_VER_PATCH);
-  std::printf("  fmt         %d\n", FMT_VERSION);
+  std::printf("  fmt         %d.%d.%d\n", FMT_VERSION / 10000, FMT_VERSION / 100 % 100, FMT_VERSION % 100);
   std::printf("  CLI11       %s\n", CLI11_VERSION);
   return 0;
 }

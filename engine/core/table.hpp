@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "engine/core/aligned_buffer.hpp"
@@ -70,9 +71,10 @@ class Column {
  private:
   template <class T>
   void check_type() const {
-    if (element_type_of<T>() != type_)
+    using V = std::remove_cv_t<T>;
+    if (element_type_of<V>() != type_)
       throw Error("column " + key() + " holds " + element_type_name(type_) + ", accessed as " +
-                  element_type_name(element_type_of<T>()));
+                  element_type_name(element_type_of<V>()));
   }
 
   std::string table_;

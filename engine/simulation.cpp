@@ -31,11 +31,8 @@ std::atomic<bool>& Simulation::interrupt_flag() {
 }
 
 Simulation::Simulation(Scene scene, RunOptions options) : scene_(std::move(scene)), options_(std::move(options)) {
-  if (options_.write_output) {
-    std::filesystem::create_directories(options_.out_dir);
-    open_log_file(options_.out_dir / "rift.log");
-    write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
-  }
+  // Everything that can reject the input happens before the output folder is touched.
+  if (options_.write_output) buffer_log_messages();
   spdlog::info("scene '{}' ({}), hash {}", scene_.name, scene_.source_file.empty() ? "built-in" : scene_.source_file,
                scene_.hash);
   world_ = build_world(scene_);
@@ -44,6 +41,9 @@ Simulation::Simulation(Scene scene, RunOptions options) : scene_(std::move(scene
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
   choose_dt();
   if (options_.write_output) {
+    std::filesystem::create_directories(options_.out_dir);
+    open_log_file(options_.out_dir / "rift.log");
+    write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
     series_ = std::make_unique<XdmfSeries>(options_.out_dir, "rift");
     checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
   }

@@ -2,6 +2,9 @@
 
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/dist_sink.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+
+#include <fstream>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace rift {
@@ -9,6 +12,8 @@ namespace rift {
 namespace {
 std::shared_ptr<spdlog::sinks::dist_sink_mt> sinks;
 std::shared_ptr<spdlog::sinks::sink> file_sink;
+std::shared_ptr<spdlog::sinks::ringbuffer_sink_mt> early;
+constexpr const char* file_pattern = "[%Y-%m-%d %H:%M:%S.%e] [%l] %v";
 }  // namespace
 
 void init_logging(bool verbose, bool quiet) {
@@ -23,11 +28,25 @@ void init_logging(bool verbose, bool quiet) {
   spdlog::set_level(quiet ? spdlog::level::warn : verbose ? spdlog::level::debug : spdlog::level::info);
 }
 
+void buffer_log_messages() {
+  if (!sinks) init_logging(false, false);
+  if (early) sinks->remove_sink(early);
+  early = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(4096);
+  early->set_pattern(file_pattern);
+  sinks->add_sink(early);
+}
+
 void open_log_file(const std::filesystem::path& file) {
   if (!sinks) init_logging(false, false);
   close_log_file();
+  if (early) {
+    sinks->remove_sink(early);
+    std::ofstream out(file, std::ios::app);
+    for (const auto& line : early->last_formatted()) out << line;
+    early.reset();
+  }
   file_sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string(), false);
-  file_sink->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
+  file_sink->set_pattern(file_pattern);
   file_sink->set_level(spdlog::level::debug);
   sinks->add_sink(file_sink);
 }

@@ -91,3 +91,23 @@ TEST(Run, RefusesADtAboveTheStableStep) {
     EXPECT_NE(m.find("allow_unstable_dt"), std::string::npos) << m;
   }
 }
+
+TEST(Run, InputErrorFoundWhileBuildingWritesNothing) {
+  // The scene is valid YAML, but its boundary names a surface the generated box does not have: the run
+  // must stop before the output folder exists, naming the key and the surfaces that do exist.
+  const std::string path = std::string(RIFT_SOURCE_DIR) + "/scenes/examples/quickstart.yaml";
+  const Scene scene = load_scene(path, {"solid.boundaries[0].surface=top"});
+  const fs::path dir = fresh_dir("bad_world");
+  RunOptions o;
+  o.out_dir = dir;
+  o.progress = false;
+  try {
+    Simulation sim(scene, o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("solid.boundaries[0].surface: the mesh has no surface 'top'"), std::string::npos) << m;
+    EXPECT_NE(m.find("xmin"), std::string::npos) << m;
+  }
+  EXPECT_FALSE(fs::exists(dir));
+}

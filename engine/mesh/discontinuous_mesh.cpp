@@ -1,0 +1,113 @@
+#include "engine/mesh/discontinuous_mesh.hpp"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "engine/core/error.hpp"
+
+namespace rift {
+
+namespace {
+
+// Outward faces of a positively oriented tet, as corner indices; face k is opposite corner k.
+constexpr int32_t face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+struct FaceKey {
+  std::array<int32_t, 3> v;
+  bool operator==(const FaceKey& o) const { return v == o.v; }
+};
+struct FaceKeyHash {
+  size_t operator()(const FaceKey& k) const {
+    uint64_t h = 1469598103934665603ull;
+    for (int32_t x : k.v) h = (h ^ static_cast<uint32_t>(x)) * 1099511628211ull;
+    return h;
+  }
+};
+FaceKey key_of(std::array<int32_t, 3> v) {
+  std::sort(v.begin(), v.end());
+  return {v};
+}
+
+}  // namespace
+
+DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bool(size_t)>& in_zone) {
+  DiscontinuousMesh out;
+  const size_t nt = mesh.tets.size();
+  out.tet_in_zone.resize(nt);
+  for (size_t e = 0; e < nt; ++e) out.tet_in_zone[e] = in_zone(e) ? 1 : 0;
+
+  // Shared nodes first (input vertices used by a tet outside the zone, in vertex order), then 4 private
+  // nodes per zone tet in tet order: a zone tet's nodes are contiguous, which the tet kernel likes.
+  std::vector<int32_t> shared_id(mesh.nodes.size(), -1);
+  for (size_t e = 0; e < nt; ++e)
+    if (!out.tet_in_zone[e])
+      for (int32_t v : mesh.tets[e]) shared_id[v] = 0;
+  for (size_t v = 0; v < mesh.nodes.size(); ++v)
+    if (shared_id[v] == 0) {
+      shared_id[v] = static_cast<int32_t>(out.nodes.size());
+      out.nodes.push_back(mesh.nodes[v]);
+      out.node_vertex.push_back(static_cast<int32_t>(v));
+    }
+  out.tets.resize(nt);
+  for (size_t e = 0; e < nt; ++e)
+    for (int k = 0; k < 4; ++k) {
+      const int32_t v = mesh.tets[e][k];
+      if (!out.tet_in_zone[e]) {
+        out.tets[e][k] = shared_id[v];
+        continue;
+      }
+      out.tets[e][k] = static_cast<int32_t>(out.nodes.size());
+      out.nodes.push_back(mesh.nodes[v]);
+      out.node_vertex.push_back(v);
+    }
+
+  // Pair the faces: the first tet to show a face waits in the map for the second.
+  std::unordered_map<FaceKey, std::pair<int32_t, int32_t>, FaceKeyHash> open_faces;  // (tet, face)
+  open_faces.reserve(2 * nt);
+  for (size_t e = 0; e < nt; ++e)
+    for (int f = 0; f < 4; ++f) {
+      std::array<int32_t, 3> v;
+      for (int i = 0; i < 3; ++i) v[i] = mesh.tets[e][face_corners[f][i]];
+      const FaceKey key = key_of(v);
+      auto it = open_faces.find(key);
+      if (it == open_faces.end()) {
+        open_faces.emplace(key, std::make_pair(static_cast<int32_t>(e), f));
+        continue;
+      }
+      const auto [a, fa] = it->second;
+      open_faces.erase(it);
+      if (!out.tet_in_zone[a] && !out.tet_in_zone[e]) continue;
+      // Corners 0-2: tet A's face reversed; 3-5: the copies in tet B of the same vertices.
+      std::array<int32_t, 6> joint;
+      for (int i = 0; i < 3; ++i) {
+        const int corner = face_corners[fa][2 - i];
+        joint[i] = out.tets[a][corner];
+        const int32_t vertex = mesh.tets[a][corner];
+        int kb = 0;
+        while (mesh.tets[e][kb] != vertex) ++kb;
+        joint[3 + i] = out.tets[e][kb];
+      }
+      out.joints.push_back(joint);
+      out.joint_tets.push_back({a, static_cast<int32_t>(e)});
+      out.joint_faces.push_back({fa, f});
+    }
+
+  // Boundary triangles onto the copies of the tet they bound (the faces still open).
+  out.triangles.resize(mesh.triangles.size());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto it = open_faces.find(key_of(mesh.triangles[t]));
+    if (it == open_faces.end())
+      throw Error("mesh: surface triangle " + std::to_string(t) + " (vertices " + std::to_string(mesh.triangles[t][0]) +
+                  ", " + std::to_string(mesh.triangles[t][1]) + ", " + std::to_string(mesh.triangles[t][2]) +
+                  ") is not a boundary face of the tetrahedra; surfaces must lie on the mesh boundary");
+    const int32_t e = it->second.first;
+    for (int i = 0; i < 3; ++i) {
+      int k = 0;
+      while (mesh.tets[e][k] != mesh.triangles[t][i]) ++k;
+      out.triangles[t][i] = out.tets[e][k];
+    }
+  }
+  return out;
+}
+
+}  // namespace rift

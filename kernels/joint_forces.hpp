@@ -47,8 +47,8 @@ struct JointArgs {
   std::span<const JointMaterial> materials;  // preconditions: p, f_t, c > 0, G_I, G_II > 0, tan(phi) >= 0
   const JointRule* rule;                     // joint_rule(3) or joint_rule(7)
   Softening softening;
-  std::span<double> d_max;     // in/out, rule->points per joint: the D_max history, starts at 0
-  std::span<uint8_t> broken;   // in/out, 1 per joint: a JointBreakMode value; nonzero joints are skipped
+  std::span<double> d_max;         // in/out, rule->points per joint: the D_max history, starts at 0
+  std::span<uint8_t> broken;       // in/out, 1 per joint: a JointBreakMode value; nonzero joints are skipped
   std::span<double> corner_force;  // out, 18 per joint: corners 0..5, x y z each
   // Optional outputs, 1 per joint; an empty span skips that output.
   std::span<double> opening;        // weighted mean of o over the points [m] (also for broken joints)

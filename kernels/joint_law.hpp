@@ -67,9 +67,9 @@ inline constexpr double kBrittleSofteningFraction = 1e-3;
 
 // What depends on the joint (h, material) but not on the point.
 struct JointScales {
-  double stiffness;  // k = p / h [Pa/m]
-  double op, ot;     // normal peak opening and softening length [m]
-  double sp0, st0;   // shear peak slip and softening length at f_s = c (no confinement) [m]
+  double stiffness;                 // k = p / h [Pa/m]
+  double op, ot;                    // normal peak opening and softening length [m]
+  double sp0, st0;                  // shear peak slip and softening length at f_s = c (no confinement) [m]
   bool short_normal, short_shear0;  // an energy_exact length was floored
 };
 
@@ -88,9 +88,9 @@ inline JointScales joint_scales(const JointMaterial& m, double h, Softening rule
 }
 
 struct JointPointResponse {
-  double sigma;  // normal traction, tension positive [Pa]
-  double tau;    // shear traction magnitude (acts along the sliding direction) [Pa], >= 0
-  double d_max;  // updated history in [0, 1]; 1 = this point has failed
+  double sigma;                    // normal traction, tension positive [Pa]
+  double tau;                      // shear traction magnitude (acts along the sliding direction) [Pa], >= 0
+  double d_max;                    // updated history in [0, 1]; 1 = this point has failed
   double energy;                   // stored energy per unit area [J/m2]
   double normal_part, shear_part;  // Dn^2 and Ds^2: which mode drives the damage (break classification)
   bool short_shear;                // the shear softening length was floored at this confinement

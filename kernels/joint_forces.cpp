@@ -26,7 +26,7 @@ inline double dot(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-JointGeometry geometry(std::span<const double> x, const int32_t* nodes) {
+[[gnu::always_inline]] inline JointGeometry geometry(std::span<const double> x, const int32_t* nodes) {
   JointGeometry g;
   double xm[3][3];
   for (int i = 0; i < 3; ++i) {
@@ -144,9 +144,8 @@ JointStatus joint_forces(const JointArgs& a, size_t begin, size_t end) {
       mean_o += rule.w[q] * o;
       mean_s += rule.w[q] * s;
       energy += wA * r.energy;
-      const double shear_scale = s > 0.0 ? r.tau / s : 0.0;
       double t[3];
-      for (int c = 0; c < 3; ++c) t[c] = r.sigma * g.n[c] + shear_scale * sv[c];
+      for (int c = 0; c < 3; ++c) t[c] = r.sigma * g.n[c] + r.tau_per_slip * sv[c];
       for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) F[i][c] += wA * rule.N[q][i] * t[c];
     }

@@ -65,31 +65,42 @@ struct JointMaterial {
 // (JointStatus::short_softening); joint_min_penalty in softening.hpp tells the user what p would do.
 inline constexpr double kBrittleSofteningFraction = 1e-3;
 
-// What depends on the joint (h, material) but not on the point.
+// What depends on the joint (h, material) but not on the point. The inverses spare divisions in the
+// per-point law (the kernel is bound by its divisions and square roots, not by memory).
 struct JointScales {
-  double stiffness;                 // k = p / h [Pa/m]
-  double op, ot;                    // normal peak opening and softening length [m]
-  double sp0, st0;                  // shear peak slip and softening length at f_s = c (no confinement) [m]
-  bool short_normal, short_shear0;  // an energy_exact length was floored
+  double stiffness;                   // k = p / h [Pa/m]
+  double compliance2;                 // 2 / k: peak separation per unit strength [m/Pa]
+  double op, ot, inv_op, inv_ot;      // normal peak opening and softening length [m]
+  double sp0, st0, inv_sp0, inv_st0;  // shear peak slip and softening length at f_s = c (no confinement)
+  bool short_normal, short_shear0;    // an energy_exact length was floored
 };
+
+// Softening length, floored (and flagged) when energy_exact has none; see kBrittleSofteningFraction.
+inline double floored_length(Softening rule, double f, double peak, double G, double Z, bool& short_length) {
+  const double L = softening_length(rule, f, peak, G, Z);
+  short_length = !(L > 0.0);
+  return short_length ? kBrittleSofteningFraction * peak : L;
+}
 
 inline JointScales joint_scales(const JointMaterial& m, double h, Softening rule, double Z) {
   JointScales k;
   k.stiffness = m.penalty / h;
-  k.op = 2.0 * m.tensile_strength / k.stiffness;
-  k.ot = softening_length(rule, m.tensile_strength, k.op, m.G_I, Z);
-  k.short_normal = !(k.ot > 0.0);
-  if (k.short_normal) k.ot = kBrittleSofteningFraction * k.op;
-  k.sp0 = 2.0 * m.cohesion / k.stiffness;
-  k.st0 = softening_length(rule, m.cohesion, k.sp0, m.G_II, Z);
-  k.short_shear0 = !(k.st0 > 0.0);
-  if (k.short_shear0) k.st0 = kBrittleSofteningFraction * k.sp0;
+  k.compliance2 = 2.0 * h / m.penalty;
+  k.op = m.tensile_strength * k.compliance2;
+  k.inv_op = 0.5 * k.stiffness / m.tensile_strength;
+  k.ot = floored_length(rule, m.tensile_strength, k.op, m.G_I, Z, k.short_normal);
+  k.inv_ot = 1.0 / k.ot;
+  k.sp0 = m.cohesion * k.compliance2;
+  k.inv_sp0 = 0.5 * k.stiffness / m.cohesion;
+  k.st0 = floored_length(rule, m.cohesion, k.sp0, m.G_II, Z, k.short_shear0);
+  k.inv_st0 = 1.0 / k.st0;
   return k;
 }
 
 struct JointPointResponse {
   double sigma;                    // normal traction, tension positive [Pa]
   double tau;                      // shear traction magnitude (acts along the sliding direction) [Pa], >= 0
+  double tau_per_slip;             // tau / s, finite at s = 0: the traction vector is sigma n + this x sv
   double d_max;                    // updated history in [0, 1]; 1 = this point has failed
   double energy;                   // stored energy per unit area [J/m2]
   double normal_part, shear_part;  // Dn^2 and Ds^2: which mode drives the damage (break classification)
@@ -101,17 +112,29 @@ inline JointPointResponse joint_point_response(const JointMaterial& m, const Joi
   JointPointResponse r{};
   // Normal compression first: it raises the shear strength.
   const double sigma_c = o < 0.0 ? k.stiffness * o : 0.0;
-  double fs = m.cohesion, sp = k.sp0, st = k.st0;
+  double fs = m.cohesion, sp = k.sp0, st = k.st0, inv_sp = k.inv_sp0, inv_st = k.inv_st0;
   r.short_shear = k.short_shear0;
+  // The confined softening length costs two divisions and only matters past the peak slip or once damaged,
+  // so it is computed when first needed (and only then checked for being too short).
+  bool confined_length_pending = false;
   if (sigma_c < 0.0) {
     fs = m.cohesion - sigma_c * m.tan_friction;
-    sp = 2.0 * fs / k.stiffness;
-    st = softening_length(rule, fs, sp, m.G_II, Z);
-    r.short_shear = !(st > 0.0);
-    if (r.short_shear) st = kBrittleSofteningFraction * sp;
+    sp = fs * k.compliance2;
+    inv_sp = 1.0 / sp;
+    confined_length_pending = true;
   }
-  const double Dn = o > k.op ? (o - k.op) / k.ot : 0.0;
-  const double Ds = s > sp ? (s - sp) / st : 0.0;
+  auto confined_length = [&] {
+    if (!confined_length_pending) return;
+    st = floored_length(rule, fs, sp, m.G_II, Z, r.short_shear);
+    inv_st = 1.0 / st;
+    confined_length_pending = false;
+  };
+  const double Dn = o > k.op ? (o - k.op) * k.inv_ot : 0.0;
+  double Ds = 0.0;
+  if (s > sp) {
+    confined_length();
+    Ds = (s - sp) * inv_st;
+  }
   r.normal_part = Dn * Dn;
   r.shear_part = Ds * Ds;
   const double D = (Dn > 0.0 && Ds > 0.0) ? std::sqrt(r.normal_part + r.shear_part) : Dn + Ds;
@@ -123,29 +146,33 @@ inline JointPointResponse joint_point_response(const JointMaterial& m, const Joi
       r.sigma = sigma_c;
       r.energy = 0.5 * sigma_c * o;
     } else {
-      const double x = o / k.op;
+      const double x = o * k.inv_op;
       r.sigma = m.tensile_strength * x * (2.0 - x);
       r.energy = m.tensile_strength * k.op * x * x * (1.0 - x / 3.0);
     }
-    const double y = s / sp;
-    r.tau = fs * y * (2.0 - y);
+    const double y = s * inv_sp;
+    r.tau_per_slip = fs * (2.0 - y) * inv_sp;
+    r.tau = r.tau_per_slip * s;
     r.energy += fs * sp * y * y * (1.0 - y / 3.0);
     return r;
   }
 
+  confined_length();
   const double z = softening_z(De);
   r.sigma = o < 0.0 ? sigma_c : z * m.tensile_strength / (k.op + De * k.ot) * o;
-  r.tau = z * fs / (sp + De * st) * s;
+  r.tau_per_slip = z * fs / (sp + De * st);
+  r.tau = r.tau_per_slip * s;
   r.energy = 0.5 * (r.sigma * o + r.tau * s);
   if (sigma_c < 0.0 && m.residual_friction > 0.0) {
     const double q = (1.0 - z) * m.residual_friction * (-sigma_c);
     if (s < sp) {
-      r.tau += q * s / sp;
-      r.energy += 0.5 * q * s * s / sp;
+      r.tau_per_slip += q * inv_sp;
+      r.energy += 0.5 * q * s * s * inv_sp;
     } else {
-      r.tau += q;
+      r.tau_per_slip += q / s;
       r.energy += q * (s - 0.5 * sp);
     }
+    r.tau = r.tau_per_slip * s;
   }
   return r;
 }

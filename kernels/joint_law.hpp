@@ -40,10 +40,13 @@
 // Stored (recoverable) energy per unit area, exactly the potential of the tractions at fixed D_max and
 // fixed f_s:  compression 1/2 k o^2;  intact f_t op (x^2 - x^3/3) + f_s sp (y^2 - y^3/3);  damaged
 // 1/2 kn o^2 + 1/2 ks s^2 (+ residual: q s^2/(2 sp) for s <= sp, q (s - sp/2) beyond, q = (1-z) mu |sigma|).
-// Under compression f_s (hence tau) depends on o while sigma does not depend on s: that coupling is
-// friction-like and not conservative, so a closed path that changes the confinement while slipping does net
-// work that the engine will book as dissipated. Without compression the law is exactly conservative at
-// fixed D_max.
+// Under compression f_s (hence tau) depends on o while sigma does not depend on s, so the law is not
+// conservative there: a closed path in (o, s), counter-clockwise, does the net work on the joint
+// oint tau ds = -k tan(phi) x (integral of (s/sp)^2 over the enclosed area) (pre-peak, from dtau/do at
+// fixed s), and the opposite when travelled the other way. It is
+// small (second order in s/sp, zero at zero slip) but it is not friction: the engine's "work - stored"
+// books it as dissipated, and it can be negative on such loops. At fixed opening, or without compression,
+// the law is exactly conservative at fixed D_max.
 #include <algorithm>
 #include <cmath>
 
@@ -65,8 +68,7 @@ struct JointMaterial {
 // (JointStatus::short_softening); joint_min_penalty in softening.hpp tells the user what p would do.
 inline constexpr double kBrittleSofteningFraction = 1e-3;
 
-// What depends on the joint (h, material) but not on the point. The inverses spare divisions in the
-// per-point law (the kernel is bound by its divisions and square roots, not by memory).
+// What depends on the joint (h, material) but not on the point; the inverses spare per-point divisions.
 struct JointScales {
   double stiffness;                   // k = p / h [Pa/m]
   double compliance2;                 // 2 / k: peak separation per unit strength [m/Pa]

@@ -632,6 +632,43 @@ TEST(JointLaw, StoredEnergyIsPotentialInShearUnderCompression) {
   for (double d : j.d_max) EXPECT_EQ(d, 0.0);
 }
 
+// ... but not on a loop that also changes the confinement: joint_law.hpp states the work of a
+// counter-clockwise loop in (o, s) as -k tan(phi) times the area integral of (s/sp(o))^2 (pre-peak). The
+// ellipse o = o0 + a r cos t, s = s0 + b r sin t is integrated in (r, t) (Simpson x periodic trapezoid,
+// ~1e-10); the trapezoid work over 20000 steps is second order (~1e-8). 1e-5 of the loop work is fair.
+// Reversing the loop reverses the sign: the coupling is not friction.
+TEST(JointLaw, ConfinementSlipLoopWorkIsTheMohrCoulombCoupling) {
+  const double k = kP / kH, o0 = -6e-8, a = 4e-8, s0 = 0.4 * kSp, b = 0.2 * kSp;
+  auto sp_of = [&](double o) { return 2 * (kC - k * o * kTanPhi) / k; };
+  const int nt = 400;
+  double area_integral = 0.0;
+  for (int i = 0; i < nt; ++i) {
+    const double t = 2 * std::numbers::pi * i / nt;
+    area_integral += simpson(
+        [&](double r) {
+          const double o = o0 + a * r * std::cos(t), s = s0 + b * r * std::sin(t);
+          const double y = s / sp_of(o);
+          return y * y * a * b * r;
+        },
+        0.0, 1.0, 200);
+  }
+  area_integral *= 2 * std::numbers::pi / nt;
+  const double expected = -k * kTanPhi * area_integral * kArea;
+  for (double direction : {1.0, -1.0}) {
+    OneJoint j(3);
+    j.jump(s0, 0, o0 + a);
+    WorkMeter meter(j);
+    const int n = 20000;
+    for (int i = 1; i <= n; ++i) {
+      const double t = direction * 2 * std::numbers::pi * i / n;
+      j.jump(s0 + b * std::sin(t), 0, o0 + a * std::cos(t));
+      meter.step(j);
+    }
+    EXPECT_NEAR(meter.work, direction * expected, 1e-5 * std::fabs(expected));
+    for (double d : j.d_max) EXPECT_EQ(d, 0.0);
+  }
+}
+
 // Pure mode I loaded to D_1 = 0.5 and unloaded to zero opening: work - stored energy is the dissipated
 // energy (2/3) f_t op + f_t ot int_0^D1 z - (1/2) z(D1) f_t (op + D1 ot), the last term being the
 // energy released back along the secant. Simpson with 2000 panels for the integral (error ~1e-13);

@@ -1,5 +1,5 @@
-// Throughput of the 6-node joint force kernel on FDEM meshes of ~1e4, 1e5 and 1e6 joints, 3- and 7-point
-// rules, at 1 and 2 threads.
+// Throughput of the 6-node joint force kernel (AVX2 path and scalar reference) on FDEM meshes of ~1e4, 1e5
+// and 1e6 joints, 3- and 7-point rules, at 1 and 2 threads.
 //
 // Mesh: bench_common's perturbed Kuhn mesh (shared layout) gives the tets and which faces they share; every
 // tet then gets private copies of its 4 corners (nodes 4t..4t+3, as the engine stores them) and every
@@ -123,7 +123,9 @@ const JointMesh& cached_joint_mesh(size_t target_joints) {
   return *mesh;
 }
 
-void run(benchmark::State& state, bool all_outputs) {
+using Kernel = rift::kernels::JointStatus (*)(const JointArgs&, size_t, size_t);
+
+void run(benchmark::State& state, Kernel kernel, bool all_outputs) {
   const size_t target = static_cast<size_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const int points = static_cast<int>(state.range(2));
@@ -156,8 +158,8 @@ void run(benchmark::State& state, bool all_outputs) {
                        breaks,
                        &break_count};
   for (auto _ : state) {
-    rift::bench::parallel_ranges(
-        threads, J, kGrain, [&](size_t begin, size_t end) { rift::kernels::joint_forces(args, begin, end); });
+    rift::bench::parallel_ranges(threads, J, kGrain,
+                                 [&](size_t begin, size_t end) { kernel(args, begin, end); });
     benchmark::ClobberMemory();
   }
   const double model = points == 3 ? 324.0 : 452.0;
@@ -182,14 +184,18 @@ void joint_args(benchmark::internal::Benchmark* b) {
 }
 
 void BM_JointForces(benchmark::State& state) {
-  run(state, true);
+  run(state, &rift::kernels::joint_forces, true);
+}
+void BM_JointForcesScalar(benchmark::State& state) {
+  run(state, &rift::kernels::joint_forces_scalar, true);
 }
 // Optional outputs skipped (empty spans), as a step that writes no output would call it.
 void BM_JointForcesOnly(benchmark::State& state) {
-  run(state, false);
+  run(state, &rift::kernels::joint_forces, false);
 }
 
 BENCHMARK(BM_JointForces)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JointForcesScalar)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JointForcesOnly)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace

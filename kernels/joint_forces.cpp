@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "kernels/joint_break.hpp"
+
 namespace rift::kernels {
 
 namespace {
@@ -88,23 +90,13 @@ void broken_joint(const JointArgs& a, size_t j) {
   if (!a.slip.empty()) a.slip[j] = mean_s;
 }
 
-void record_break(const JointArgs& a, size_t j, JointBreakMode mode, JointStatus& status) {
-  a.broken[j] = static_cast<uint8_t>(mode);
-  ++status.broke;
-  const size_t slot = a.breaks.empty() ? 0 : a.break_count->fetch_add(1, std::memory_order_relaxed);
-  if (slot < a.breaks.size())
-    a.breaks[slot] = {static_cast<int32_t>(j), mode};
-  else
-    ++status.breaks_dropped;
-}
-
 void write_optional(std::span<double> out, size_t j, double value) {
   if (!out.empty()) out[j] = value;
 }
 
 }  // namespace
 
-JointStatus joint_forces(const JointArgs& a, size_t begin, size_t end) {
+JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
   JointStatus status;
   const JointRule& rule = *a.rule;
   const size_t P = static_cast<size_t>(rule.points);
@@ -153,7 +145,8 @@ JointStatus joint_forces(const JointArgs& a, size_t begin, size_t end) {
     write_optional(a.opening, j, mean_o);
     write_optional(a.slip, j, mean_s);
     if (failed >= rule.fail_count) {
-      record_break(a, j, normal_sum >= shear_sum ? JointBreakMode::tensile : JointBreakMode::shear, status);
+      joint_detail::record_break(
+          a, j, normal_sum >= shear_sum ? JointBreakMode::tensile : JointBreakMode::shear, status);
       write_zero_force(a, j);
       write_optional(a.damage, j, 1.0);
       continue;
@@ -169,6 +162,15 @@ JointStatus joint_forces(const JointArgs& a, size_t begin, size_t end) {
   }
   return status;
 }
+
+#ifndef __AVX2__
+JointStatus joint_forces(const JointArgs& args, size_t begin, size_t end) {
+  return joint_forces_scalar(args, begin, end);
+}
+bool joint_forces_vectorised() {
+  return false;
+}
+#endif
 
 double joint_stable_step(std::span<const double> x, std::span<const int32_t> joint_nodes,
                          std::span<const int32_t> material, std::span<const JointMaterial> materials,

@@ -80,7 +80,14 @@ struct JointStatus {
 
 // Joints [begin, end). Outputs are overwritten, not accumulated; ranges may be split arbitrarily between
 // threads (every joint's result is independent of the split). No allocation.
+// Two implementations of the same law: joint_forces_scalar (one joint at a time through joint_law.hpp, the
+// reference) and joint_forces (4 joints per AVX2 register; groups with a broken or degenerate joint go
+// through the scalar code). Tests compare them on random joints in every state of the law.
+JointStatus joint_forces_scalar(const JointArgs& args, size_t begin, size_t end);
+// Fast path. Without __AVX2__ at compile time it forwards to joint_forces_scalar.
 JointStatus joint_forces(const JointArgs& args, size_t begin, size_t end);
+// True when joint_forces was compiled with the AVX2 path.
+bool joint_forces_vectorised();
 
 // Critical central-difference step of the intact joints in [begin, end), each on its own:
 //   dt_j = 2 / omega_j,  omega_j^2 = 2 (p A / (3 h)) / min(m_0 .. m_5)   ->   dt_j = sqrt(6 h m_min / (p A))

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "kernels/joint_forces.hpp"
@@ -41,6 +42,10 @@ double exact_length(double f, double peak, double G) {
   return (G - 2.0 / 3.0 * f * peak) / (f * softening_integral());
 }
 
+// Which implementation OneJoint::run calls: the AVX2 path unless a BothRules test selects the scalar one.
+using Kernel = JointStatus (*)(const JointArgs&, size_t, size_t);
+Kernel g_kernel = &joint_forces;
+
 // One joint with its state and outputs; side B fixed at the reference, side A moved.
 struct OneJoint {
   std::vector<double> X = {0, 0, 0, kH, 0, 0, 0, kH, 0, 0, 0, 0, kH, 0, 0, 0, kH, 0};
@@ -63,7 +68,7 @@ struct OneJoint {
     return {x,     nodes,   material, materials, rule,   softening, d_max,       broken,
             force, opening, slip,     damage,    energy, breaks,    &break_count};
   }
-  void run() { status += joint_forces(args(), 0, 1); }
+  void run() { status += g_kernel(args(), 0, 1); }
   // Side A at reference + (sx, sy, o); side B at reference. Then evaluate.
   void jump(double sx, double sy, double o) {
     for (int i = 0; i < 3; ++i) {
@@ -106,9 +111,25 @@ void record(const char* key, double value) {
   ::testing::Test::RecordProperty(key, text);
 }
 
-class BothRules : public ::testing::TestWithParam<int> {};
-INSTANTIATE_TEST_SUITE_P(Joint, BothRules, ::testing::Values(3, 7),
-                         [](const auto& info) { return std::to_string(info.param) + "points"; });
+// Runs a test with both rules (3 and 7 points) on both paths (scalar reference and AVX2).
+enum class Path { scalar, vector };
+void PrintTo(Path p, std::ostream* os) {
+  *os << (p == Path::scalar ? "scalar" : "vector");
+}
+class BothRules : public ::testing::TestWithParam<std::tuple<int, Path>> {
+ protected:
+  void SetUp() override { g_kernel = path() == Path::scalar ? &joint_forces_scalar : &joint_forces; }
+  void TearDown() override { g_kernel = &joint_forces; }
+  static int points() { return std::get<0>(GetParam()); }
+  static Path path() { return std::get<1>(GetParam()); }
+};
+INSTANTIATE_TEST_SUITE_P(Joint, BothRules,
+                         ::testing::Combine(::testing::Values(3, 7),
+                                            ::testing::Values(Path::scalar, Path::vector)),
+                         [](const auto& info) {
+                           return std::to_string(std::get<0>(info.param)) + "points_" +
+                                  (std::get<1>(info.param) == Path::scalar ? "scalar" : "vector");
+                         });
 
 // ---------------------------------------------------------------------------------------------------------
 // 1. The curve and the rules
@@ -211,7 +232,7 @@ RampResult ramp(OneJoint& j, double peak_len, double soft_len, bool normal, doub
 // bound, tighter than femdem.md's 1e-3. The break comes at the first sample with o >= op + ot (the step is
 // 1.01 ot / 6000).
 TEST_P(BothRules, ModeIEnergyExact) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   EXPECT_DOUBLE_EQ(kOp, 1.25e-7);
   const double ot = exact_length(kFt, kOp, kGI);
   const RampResult r = ramp(j, kOp, ot, true);
@@ -236,7 +257,7 @@ TEST_P(BothRules, ModeIEnergyExact) {
 // 0.417 J/m2 plus 3 Z G_I = 34.77 J/m2 (1.159 G_I), evaluated here with femdem.md's rounded Z (6 digits,
 // so 1e-5 relative covers the rounding and the trapezoid error).
 TEST_P(BothRules, ModeIYCompatible) {
-  OneJoint j(GetParam(), Softening::y_compatible);
+  OneJoint j(points(), Softening::y_compatible);
   const double ot = 1.8e-5;
   const RampResult r = ramp(j, kOp, ot, true);
   EXPECT_NEAR(r.peak, kFt, 1e-12 * kFt);
@@ -267,7 +288,7 @@ TEST(JointLaw, ModeISofteningBranchIsMunjizaCurve) {
 // Zero normal stress: peak tau = c at s = sp = 2 h c / p = 3.75e-7 m; work to break = G_II (bounds as in
 // mode I); shear event.
 TEST_P(BothRules, ModeIIUnconfined) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   const double st = exact_length(kC, kSp, kGII);
   const RampResult r = ramp(j, kSp, st, false);
   EXPECT_NEAR(r.peak, kC, 1e-12 * kC);
@@ -285,7 +306,7 @@ TEST_P(BothRules, ModeIIUnconfined) {
 // damaged); the shear work to break is G_II again (energy_exact uses the current f_s). The opening is
 // stored in a coordinate, so sigma_n carries ~1e-16 relative error: 1e-9 on the peak is generous.
 TEST_P(BothRules, ModeIIConfined) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   const double sigma_n = -10e6, o = sigma_n * kH / kP;
   const double fs = kC - sigma_n * kTanPhi;
   EXPECT_NEAR(fs, 22.0021e6, 100.0);
@@ -300,7 +321,7 @@ TEST_P(BothRules, ModeIIConfined) {
   j.jump(sp + 0.5 * st, 0, o);
   check_sigma();
   EXPECT_NEAR(j.damage[0], 0.5, 1e-9);
-  OneJoint k(GetParam());
+  OneJoint k(points());
   const RampResult r = ramp(k, sp, st, false, o);
   EXPECT_NEAR(r.peak, fs, 1e-9 * fs);
   EXPECT_NEAR(r.peak_at, sp, 1e-15);
@@ -315,7 +336,7 @@ TEST_P(BothRules, ModeIIConfined) {
 // slip. The opening is exact here (z coordinates o and 0, n = +z exactly), so only the product's rounding
 // remains: 1e-14 relative.
 TEST_P(BothRules, CompressionIsLinearPenalty) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   for (double o : {-1e-10, -1e-8, -1.25e-7, -1e-6, -1e-4}) {
     j.jump(0, 0, o);
     EXPECT_NEAR(j.sigma(), kP * o / kH, 1e-14 * kP * std::fabs(o) / kH) << "o = " << o;
@@ -336,7 +357,7 @@ TEST_P(BothRules, CompressionIsLinearPenalty) {
 // (op + D_max ot) for o > op; D_max does not move until o passes op + 0.3 ot again; compression is still
 // the penalty; it never heals. Same expressions evaluated in the same order up to rounding: 1e-9.
 TEST_P(BothRules, UnloadReloadFollowsSecant) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   const double ot = exact_length(kFt, kOp, kGI), Dm = 0.3, o1 = kOp + Dm * ot;
   for (int k = 1; k <= 100; ++k) j.jump(0, 0, o1 * k / 100);
   const double secant = softening_z(Dm) * kFt / o1;
@@ -441,7 +462,7 @@ TEST_P(BothRules, ForcesSumToZero) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 50; ++trial) {
-    OneJoint j(GetParam());
+    OneJoint j(points());
     for (int i = 0; i < 3; ++i)
       for (int c = 0; c < 3; ++c) {
         const double ref = j.X[3 * i + c] + 0.1 * kH * u(rng);
@@ -465,7 +486,7 @@ TEST_P(BothRules, ForcesSumToZero) {
 // A closed joint moved rigidly by a 90-degree rotation about a skew axis and a metre-sized translation:
 // both sides get bit-identical coordinates, so the traction is zero (asked: 1e-9 f_t).
 TEST_P(BothRules, RigidMotionOfClosedJointGivesNoForce) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   move(j, j.X, rotation({1, 2, 3}, std::numbers::pi / 2), {1.5, -2.0, 0.7});
   j.run();
   for (double f : j.force) EXPECT_LE(std::fabs(f), 1e-9 * kFt * kArea);
@@ -480,7 +501,7 @@ TEST_P(BothRules, OpenJointIsObjective) {
   const auto R = rotation({1, 2, 3}, std::numbers::pi / 2);
   const double ot = exact_length(kFt, kOp, kGI);
   for (double scale : {0.4, 2.0 + 0.2 * ot / kOp}) {  // pre-peak; damaged
-    OneJoint a(GetParam());
+    OneJoint a(points());
     // Non-uniform jumps: opening tilted across the face plus slip in two directions.
     const double jump[3][3] = {{0.3 * kSp, 0.1 * kSp, 1.0 * kOp},
                                {0.2 * kSp, -0.2 * kSp, 0.8 * kOp},
@@ -490,7 +511,7 @@ TEST_P(BothRules, OpenJointIsObjective) {
     const std::vector<double> deformed = a.x;
     const std::vector<double> history = a.d_max;
     a.run();
-    OneJoint b(GetParam());
+    OneJoint b(points());
     b.d_max = history;
     move(b, deformed, R, {0.03, -0.02, 0.01});
     b.run();
@@ -533,13 +554,13 @@ TEST(JointRule, RulesAgreeForUniformJump) {
 // with o >= op + ot); cases with a point within 1e-6 of the threshold are skipped. The joint must have
 // broken exactly when that count reaches 3 of 3 or 5 of 7, and the kernel's own failed count must agree.
 TEST_P(BothRules, FailureCountRule) {
-  const JointRule& rule = joint_rule(GetParam());
+  const JointRule& rule = joint_rule(points());
   const double of = kOp + exact_length(kFt, kOp, kGI);
   std::vector<bool> seen(8, false);
   int cases = 0;
   for (double oc : {0.6, 0.8, 0.9, 1.0, 1.05, 1.2}) {
     for (int t = -40; t <= 40; ++t) {
-      OneJoint j(GetParam());
+      OneJoint j(points());
       const double corner_xy[3][2] = {{0, 0}, {1, 0}, {0, 1}};
       double o_corner[3];
       for (int i = 0; i < 3; ++i) {  // split the jump evenly: the mid-surface stays at z = 0, n = +z
@@ -580,7 +601,7 @@ TEST_P(BothRules, FailureCountRule) {
 TEST_P(BothRules, StoredEnergyIsPotentialOnClosedLoops) {
   const double ot = exact_length(kFt, kOp, kGI);
   for (double Dm : {0.0, 0.4}) {
-    OneJoint j(GetParam());
+    OneJoint j(points());
     // Size of the loop: below op and sp before damage; inside the secant region after it.
     const double o_amp = Dm == 0 ? 0.45 * kOp : 0.45 * (kOp + Dm * ot);
     const double s_amp = Dm == 0 ? 0.45 * kSp : 0.3 * (kSp + Dm * exact_length(kC, kSp, kGII));
@@ -674,7 +695,7 @@ TEST(JointLaw, ConfinementSlipLoopWorkIsTheMohrCoulombCoupling) {
 // energy released back along the secant. Simpson with 2000 panels for the integral (error ~1e-13);
 // trapezoid work over 500 + 3000 steps ~1e-8: 1e-6 relative.
 TEST_P(BothRules, DissipationAfterDamageModeI) {
-  OneJoint j(GetParam());
+  OneJoint j(points());
   const double ot = exact_length(kFt, kOp, kGI), D1 = 0.5, o1 = kOp + D1 * ot;
   j.jump(0, 0, 0);
   WorkMeter meter(j);
@@ -818,6 +839,134 @@ TEST(JointForces, StableStepBoundsHighestFrequency) {
   EXPECT_NEAR(dt, std::pow(6.0, -0.25) * kH * std::sqrt(rho / kP), 1e-12 * dt);
   e.broken[0] = 1;
   EXPECT_TRUE(std::isinf(joint_stable_step(e.x, e.nodes, e.material, e.materials, mass, e.broken, 0, 1)));
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The AVX2 path against the scalar reference
+
+// 4000 joints in every state of the law: random triangles (edges ~h, any orientation) with per-pair jumps
+// from deep compression to past failure, mixed mode; histories 0, partial or failed at random points; some
+// joints broken beforehand, some degenerate; 3 materials (one with residual friction, one whose
+// energy_exact shear length is too short under confinement); both softening rules and both rules; node
+// ids shuffled; ranges split into pieces of 1..9 joints so every tail length occurs. Both paths evaluate the
+// same expressions in the same order; they may differ only by the compiler's fused multiply-adds, a few
+// ulps per operation over ~500 operations: 1e-12 of each joint's largest force (or of the value) is fair.
+// Every discrete outcome (histories, failures, breaks, modes, status counts) must be identical.
+TEST(JointForces, VectorMatchesScalarReference) {
+  constexpr size_t kJoints = 4000;
+  RecordProperty("vectorised", joint_forces_vectorised() ? "yes" : "no");
+  for (int points : {3, 7})
+    for (Softening rule : {Softening::energy_exact, Softening::y_compatible}) {
+      std::mt19937_64 rng(99 + points);
+      std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+      std::vector<int32_t> perm(6 * kJoints);
+      for (size_t n = 0; n < perm.size(); ++n) perm[n] = static_cast<int32_t>(n);
+      std::shuffle(perm.begin(), perm.end(), rng);
+      std::vector<double> x(3 * perm.size());
+      std::vector<int32_t> nodes(6 * kJoints), material(kJoints);
+      std::vector<double> d_max(static_cast<size_t>(points) * kJoints, 0.0);
+      std::vector<uint8_t> broken(kJoints, 0);
+      const double of = kOp + exact_length(kFt, kOp, kGI);
+      for (size_t j = 0; j < kJoints; ++j) {
+        material[j] = static_cast<int32_t>(j % 3);
+        const double scale = std::pow(10.0, 2 * u(rng)) * of;  // jumps from 1e-2 to 1e2 of failure
+        const double bias = u(rng) > -0.3 ? 0.5 : -0.5;        // mostly opening, some closing
+        for (int i = 0; i < 3; ++i) {
+          const size_t na = static_cast<size_t>(perm[6 * j + i]),
+                       nb = static_cast<size_t>(perm[6 * j + i + 3]);
+          nodes[6 * j + i] = static_cast<int32_t>(na);
+          nodes[6 * j + i + 3] = static_cast<int32_t>(nb);
+          const double corner[3][3] = {{0, 0, 0}, {kH, 0, 0}, {0, kH, 0}};
+          for (int c = 0; c < 3; ++c) {
+            const double ref = 0.1 * j * (c == 0) + corner[i][c] + 0.3 * kH * u(rng);
+            const double jump = scale * (0.4 * u(rng) + (c == 2 ? bias : 0.0));
+            x[3 * nb + c] = ref - 0.5 * jump;
+            x[3 * na + c] = ref + 0.5 * jump;
+          }
+        }
+        if (j % 97 == 5) {  // degenerate: all six nodes at one point
+          for (int i = 0; i < 6; ++i)
+            for (int c = 0; c < 3; ++c) x[3 * static_cast<size_t>(nodes[6 * j + i]) + c] = 0.1 * j;
+        }
+        if (j % 89 == 7) broken[j] = 1 + (j % 2);
+        for (int q = 0; q < points; ++q) {
+          const double r = unit(rng);
+          d_max[static_cast<size_t>(points) * j + q] = r < 0.6 ? 0.0 : r < 0.9 ? unit(rng) : 1.0;
+        }
+      }
+      JointMaterial weak = limestone(), rubbly = limestone();
+      weak.residual_friction = 0.5;
+      rubbly.G_II = 8.0;  // short energy_exact shear length once confined
+      const std::vector<JointMaterial> materials{limestone(), weak, rubbly};
+
+      struct Run {
+        std::vector<double> d_max, force, opening, slip, damage, energy;
+        std::vector<uint8_t> broken;
+        std::vector<JointBreak> breaks = std::vector<JointBreak>(kJoints);
+        std::atomic<size_t> count{0};
+        JointStatus status;
+      };
+      auto run = [&](Kernel kernel, Run& r, bool split) {
+        r.d_max = d_max;
+        r.broken = broken;
+        r.force.assign(18 * kJoints, -1.0);
+        r.opening.assign(kJoints, -1.0);
+        r.slip.assign(kJoints, -1.0);
+        r.damage.assign(kJoints, -1.0);
+        r.energy.assign(kJoints, -1.0);
+        const JointArgs args{x,      nodes,    material, materials, &joint_rule(points),
+                             rule,   r.d_max,  r.broken, r.force,   r.opening,
+                             r.slip, r.damage, r.energy, r.breaks,  &r.count};
+        std::mt19937_64 pieces(5);
+        for (size_t begin = 0; begin < kJoints;) {
+          const size_t end = split ? std::min(kJoints, begin + 1 + pieces() % 9) : kJoints;
+          r.status += kernel(args, begin, end);
+          begin = end;
+        }
+        std::sort(r.breaks.begin(), r.breaks.begin() + static_cast<long>(r.count.load()),
+                  [](const JointBreak& a, const JointBreak& b) { return a.joint < b.joint; });
+      };
+      Run ref, vec;
+      run(&joint_forces_scalar, ref, false);
+      run(&joint_forces, vec, true);
+      EXPECT_GT(ref.status.broke, 50u);
+      EXPECT_GT(ref.status.degenerate, 10u);
+      if (rule == Softening::energy_exact) {
+        EXPECT_GT(ref.status.short_softening, 10u);
+      }
+      EXPECT_EQ(vec.status.broke, ref.status.broke);
+      EXPECT_EQ(vec.status.degenerate, ref.status.degenerate);
+      EXPECT_EQ(vec.status.short_softening, ref.status.short_softening);
+      EXPECT_EQ(vec.status.breaks_dropped, 0u);
+      EXPECT_EQ(vec.broken, ref.broken);
+      ASSERT_EQ(vec.count.load(), ref.count.load());
+      for (size_t e = 0; e < ref.count.load(); ++e) {
+        EXPECT_EQ(vec.breaks[e].joint, ref.breaks[e].joint);
+        EXPECT_EQ(vec.breaks[e].mode, ref.breaks[e].mode);
+      }
+      double worst = 0.0;
+      auto close = [&](double a, double b, double scale) {
+        if (a == b) return;
+        worst = std::max(worst, std::fabs(a - b) / scale);
+      };
+      for (size_t j = 0; j < kJoints; ++j) {
+        double fscale = 1e-300;
+        for (int c = 0; c < 18; ++c) fscale = std::max(fscale, std::fabs(ref.force[18 * j + c]));
+        for (int c = 0; c < 18; ++c) close(vec.force[18 * j + c], ref.force[18 * j + c], fscale);
+        close(vec.opening[j], ref.opening[j], std::fabs(ref.opening[j]) + 1e-300);
+        close(vec.slip[j], ref.slip[j], ref.slip[j] + 1e-300);
+        close(vec.damage[j], ref.damage[j], 1.0);
+        close(vec.energy[j], ref.energy[j], ref.energy[j] + 1e-300);
+        for (int q = 0; q < points; ++q) {
+          const size_t i = static_cast<size_t>(points) * j + q;
+          close(vec.d_max[i], ref.d_max[i], 1.0);
+          EXPECT_EQ(vec.d_max[i] >= 1.0, ref.d_max[i] >= 1.0);
+          EXPECT_EQ(vec.d_max[i] == 0.0, ref.d_max[i] == 0.0);
+        }
+      }
+      EXPECT_LT(worst, 1e-12) << points << " points, rule " << static_cast<int>(rule);
+      record(points == 3 ? "worst_relative_difference_3" : "worst_relative_difference_7", worst);
+    }
 }
 
 }  // namespace

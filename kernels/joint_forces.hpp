@@ -12,10 +12,11 @@
 // At each integration point q (joint_rule.hpp): d = sum N_i d_i, o = d.n, sliding vector sv = d - o n,
 // s = |sv|; the law gives sigma, tau and the traction t = sigma n + tau sv / s (no shear term when s = 0).
 // Corner forces: f_{A,i} = -sum_q w_q A N_i t,  f_{B,i} = +sum_q w_q A N_i t, so tractions resist the
-// separation (sigma > 0 pulls A back towards B) and the six forces sum to zero exactly in floating point
-// (each pair is the same number with both signs). The geometric terms of the variation (dn/dx, dA/dx, dh/dx)
-// are not included, as in Y: the forces are the tractions lumped, not the exact gradient of the stored energy
-// when the mid-surface stretches or turns under load.
+// separation (sigma > 0 pulls A back towards B). Each facing pair gets the same number with both signs, so
+// the six forces sum to zero up to the round-off of the summation alone. Their moment, -sum_i d_i x F_i, is
+// not zero once the joint is open (the pair members sit d_i apart), as in Y. The geometric terms of the
+// variation (dn/dx, dA/dx, dh/dx) are not included, as in Y: the forces are the tractions lumped, not the
+// exact gradient of the stored energy when the mid-surface stretches or turns under load.
 //
 // Breakage. A point has failed when its D_max reaches 1. When at least rule.fail_count points have failed
 // (3 of 3, 5 of 7), the joint breaks: broken[j] is set to 1 (tensile) or 2 (shear), the joint writes zero
@@ -67,8 +68,9 @@ struct JointStatus {
   size_t broke = 0;            // joints that broke in this call
   size_t breaks_dropped = 0;   // of which did not fit into args.breaks
   size_t degenerate = 0;       // mid-surface area zero or not finite: all outputs 0, history untouched
-  size_t short_softening = 0;  // joints whose energy_exact softening length (normal, or shear at some
-                               // point's confinement) was <= 0 and was floored (joint_law.hpp)
+  size_t short_softening = 0;  // joints whose energy_exact softening length was <= 0 and was floored
+                               // (joint_law.hpp): the normal one, the unconfined shear one, or the shear
+                               // one at a compressed point's confinement where the law needed it
   JointStatus& operator+=(const JointStatus& o) {
     broke += o.broke;
     breaks_dropped += o.breaks_dropped;

@@ -6,6 +6,8 @@
 // into side A, which lies above); side B corners start at the same points. Moving side A by (sx, sy, o)
 // gives a uniform jump: opening o, slip |(sx, sy)|. Mid-surface: right triangle with legs h, so h_min = h,
 // A = h^2 / 2. Tractions are read back from the forces: sigma = -(sum of side-A forces).n / A.
+// TEST_P(BothRules, ...) runs with 3 and 7 points on the scalar reference and on the AVX2 path; the other
+// single-joint tests use the AVX2 path (joint_forces), and the last test compares the two on many joints.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,0 +1,315 @@
+// The AVX2 fast path of joint_forces: four consecutive joints per register, one joint per lane. The law of
+// joint_law.hpp is restated lane-wise: both sides of each branch are computed and blended, with the same
+// expressions in the same order as the scalar reference, so the two paths agree to the last few bits (the
+// unit tests compare them on random joints in every state). The softened branch, with its exp, is only
+// evaluated when some lane is damaged, and z(D) is taken from the scalar softening_z lane by lane.
+// Groups holding a broken or degenerate joint go through joint_forces_scalar joint by joint (rare, and
+// those joints need no law). A partial group at the end of [begin, end) repeats its last joint in the spare
+// lanes and stores only the real ones, so each joint takes the same arithmetic whatever the thread split.
+#include "kernels/joint_forces.hpp"
+
+#ifdef __AVX2__
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/joint_break.hpp"
+#include "kernels/tet_simd.hpp"  // V4, gathers and transposing stores
+
+namespace rift::kernels {
+
+namespace {
+
+inline V4 set1(double a) {
+  return _mm256_set1_pd(a);
+}
+inline V4 less(V4 a, V4 b) {
+  return _mm256_cmp_pd(a, b, _CMP_LT_OQ);
+}
+inline V4 greater(V4 a, V4 b) {
+  return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
+}
+inline V4 both(V4 a, V4 b) {
+  return _mm256_and_pd(a, b);
+}
+inline V4 either(V4 a, V4 b) {
+  return _mm256_or_pd(a, b);
+}
+inline int lanes(V4 mask) {
+  return _mm256_movemask_pd(mask);
+}
+
+struct GeometryV {
+  V4 d[3][3];  // d_i = x_i - x_{i+3}
+  V4 n[3], area, h, ok;
+};
+
+// joint_forces.cpp's geometry(), lane-wise.
+void load_geometry(const JointArgs& a, const size_t joint[4], GeometryV& g) {
+  V4 xm[3][3];
+  for (int i = 0; i < 3; ++i) {
+    size_t node_a[4], node_b[4];
+    for (int l = 0; l < 4; ++l) {
+      node_a[l] = static_cast<size_t>(a.joint_nodes[6 * joint[l] + static_cast<size_t>(i)]);
+      node_b[l] = static_cast<size_t>(a.joint_nodes[6 * joint[l] + static_cast<size_t>(i) + 3]);
+    }
+    V4 xa[3], xb[3];
+    simd::load_xyz(a.x.data(), node_a, xa);
+    simd::load_xyz(a.x.data(), node_b, xb);
+    for (int k = 0; k < 3; ++k) {
+      xm[i][k] = 0.5 * (xa[k] + xb[k]);
+      g.d[i][k] = xa[k] - xb[k];
+    }
+  }
+  V4 e1[3], e2[3], e3[3];
+  for (int k = 0; k < 3; ++k) {
+    e1[k] = xm[1][k] - xm[0][k];
+    e2[k] = xm[2][k] - xm[0][k];
+    e3[k] = xm[2][k] - xm[1][k];
+  }
+  const V4 c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+  const V4 twice_area = _mm256_sqrt_pd(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  g.ok = both(greater(twice_area, set1(0.0)), less(twice_area, set1(HUGE_VAL)));
+  const V4 inv = simd::keep(g.ok, 1.0 / twice_area);
+  for (int k = 0; k < 3; ++k) g.n[k] = c[k] * inv;
+  g.area = 0.5 * twice_area;
+  auto len2 = [](const V4 e[3]) { return e[0] * e[0] + e[1] * e[1] + e[2] * e[2]; };
+  g.h = _mm256_sqrt_pd(_mm256_min_pd(_mm256_min_pd(len2(e1), len2(e2)), len2(e3)));
+}
+
+struct MaterialV {
+  V4 p, ft, c, tan_phi, GI, GII, mu;
+};
+
+MaterialV load_materials(const JointArgs& a, const size_t joint[4]) {
+  const JointMaterial* m[4];
+  for (int l = 0; l < 4; ++l) m[l] = &a.materials[static_cast<size_t>(a.material[joint[l]])];
+  auto field = [&](double JointMaterial::*f) {
+    return _mm256_setr_pd(m[0]->*f, m[1]->*f, m[2]->*f, m[3]->*f);
+  };
+  return {field(&JointMaterial::penalty),
+          field(&JointMaterial::tensile_strength),
+          field(&JointMaterial::cohesion),
+          field(&JointMaterial::tan_friction),
+          field(&JointMaterial::G_I),
+          field(&JointMaterial::G_II),
+          field(&JointMaterial::residual_friction)};
+}
+
+// softening_length and floored_length of joint_law.hpp; short_mask gets the lanes that were floored.
+V4 floored_length(Softening rule, V4 f, V4 peak, V4 G, double Z, V4& short_mask) {
+  const V4 L = rule == Softening::y_compatible ? _mm256_max_pd(2.0 * peak, 3.0 * G / f)
+                                               : (G - (2.0 / 3.0) * f * peak) / (f * Z);
+  short_mask = _mm256_cmp_pd(L, set1(0.0), _CMP_NGT_UQ);  // !(L > 0), NaN included
+  return simd::select(short_mask, kBrittleSofteningFraction * peak, L);
+}
+
+struct ScalesV {  // JointScales, lane-wise
+  V4 k, c2, op, inv_op, ot, inv_ot, sp0, inv_sp0, st0, inv_st0, short_normal, short_shear0;
+};
+
+ScalesV scales(const MaterialV& m, V4 h, Softening rule, double Z) {
+  ScalesV k;
+  k.k = m.p / h;
+  k.c2 = 2.0 * h / m.p;
+  k.op = m.ft * k.c2;
+  k.inv_op = 0.5 * k.k / m.ft;
+  k.ot = floored_length(rule, m.ft, k.op, m.GI, Z, k.short_normal);
+  k.inv_ot = 1.0 / k.ot;
+  k.sp0 = m.c * k.c2;
+  k.inv_sp0 = 0.5 * k.k / m.c;
+  k.st0 = floored_length(rule, m.c, k.sp0, m.GII, Z, k.short_shear0);
+  k.inv_st0 = 1.0 / k.st0;
+  return k;
+}
+
+struct PointV {  // JointPointResponse, lane-wise (tau itself is not needed by the kernel)
+  V4 sigma, tau_per_slip, d_max, energy, normal_part, shear_part, short_shear;
+};
+
+// The softened (D_eff > 0) branch of joint_point_response for all lanes, given the shared quantities.
+void softened(const MaterialV& m, const ScalesV& k, V4 o, V4 s, V4 De, V4 comp, V4 sigma_c, V4 fs, V4 sp,
+              V4 inv_sp, V4 st, PointV& r) {
+  alignas(32) double lane_D[4], lane_z[4];
+  _mm256_store_pd(lane_D, De);
+  for (int l = 0; l < 4; ++l) lane_z[l] = softening_z(lane_D[l]);
+  const V4 z = _mm256_load_pd(lane_z);
+  r.sigma = simd::select(comp, sigma_c, z * m.ft / (k.op + De * k.ot) * o);
+  r.tau_per_slip = z * fs / (sp + De * st);
+  const V4 tau = r.tau_per_slip * s;
+  r.energy = 0.5 * (r.sigma * o + tau * s);
+  const V4 residual = both(comp, greater(m.mu, set1(0.0)));
+  if (lanes(residual) == 0) return;
+  const V4 q = (1.0 - z) * m.mu * (-sigma_c);
+  const V4 within = less(s, sp);
+  const V4 tps = simd::select(within, r.tau_per_slip + q * inv_sp, r.tau_per_slip + q / s);
+  const V4 energy = simd::select(within, r.energy + 0.5 * q * s * s * inv_sp, r.energy + q * (s - 0.5 * sp));
+  r.tau_per_slip = simd::select(residual, tps, r.tau_per_slip);
+  r.energy = simd::select(residual, energy, r.energy);
+}
+
+PointV point_law(const MaterialV& m, const ScalesV& k, Softening rule, double Z, V4 o, V4 s, V4 d_max) {
+  const V4 zero = set1(0.0);
+  const V4 comp = less(o, zero);
+  const V4 sigma_c = simd::keep(comp, k.k * o);
+  const bool any_comp = lanes(comp) != 0;
+  const V4 fs = any_comp ? simd::select(comp, m.c - sigma_c * m.tan_phi, m.c) : m.c;
+  const V4 sp = any_comp ? simd::select(comp, fs * k.c2, k.sp0) : k.sp0;
+  const V4 inv_sp = any_comp ? simd::select(comp, 1.0 / sp, k.inv_sp0) : k.inv_sp0;
+  // The confined softening length (two divisions) exactly where the scalar code computes it: compressed
+  // lanes past the peak slip or damaged. A compressed lane has Dn = 0, so D_eff > 0 there iff s > sp or
+  // D_max > 0, which is known before D.
+  V4 st = k.st0, inv_st = k.inv_st0, short_confined = set1(0.0);
+  const V4 needed = both(comp, either(greater(s, sp), greater(d_max, set1(0.0))));
+  if (lanes(needed) != 0) {
+    const V4 st_confined = floored_length(rule, fs, sp, m.GII, Z, short_confined);
+    st = simd::select(comp, st_confined, k.st0);
+    inv_st = simd::select(comp, 1.0 / st_confined, k.inv_st0);
+  }
+
+  PointV r;
+  const V4 Dn = simd::keep(greater(o, k.op), (o - k.op) * k.inv_ot);
+  const V4 Ds = simd::keep(greater(s, sp), (s - sp) * inv_st);
+  r.normal_part = Dn * Dn;
+  r.shear_part = Ds * Ds;
+  const V4 mixed = both(greater(Dn, zero), greater(Ds, zero));
+  V4 D = Dn + Ds;  // the square root (long latency) only when some lane is in mixed mode
+  if (lanes(mixed) != 0) D = simd::select(mixed, _mm256_sqrt_pd(r.normal_part + r.shear_part), D);
+  const V4 De = _mm256_min_pd(_mm256_max_pd(D, d_max), set1(1.0));
+  r.d_max = De;
+  r.short_shear = simd::select(needed, short_confined, k.short_shear0);
+
+  // Intact branch (hardening curves).
+  const V4 x = o * k.inv_op;
+  r.sigma = simd::select(comp, sigma_c, m.ft * x * (2.0 - x));
+  const V4 normal_energy = simd::select(comp, 0.5 * sigma_c * o, m.ft * k.op * x * x * (1.0 - x / 3.0));
+  const V4 y = s * inv_sp;
+  r.tau_per_slip = fs * (2.0 - y) * inv_sp;
+  r.energy = normal_energy + fs * sp * y * y * (1.0 - y / 3.0);
+  const V4 intact = _mm256_cmp_pd(De, zero, _CMP_EQ_OQ);
+  if (lanes(intact) == 0xF) return r;
+
+  PointV d = r;
+  softened(m, k, o, s, De, comp, sigma_c, fs, sp, inv_sp, st, d);
+  r.sigma = simd::select(intact, r.sigma, d.sigma);
+  r.tau_per_slip = simd::select(intact, r.tau_per_slip, d.tau_per_slip);
+  r.energy = simd::select(intact, r.energy, d.energy);
+  return r;
+}
+
+struct Sums {  // per-joint accumulators over the points
+  V4 F[3][3], mean_o, mean_s, energy, damage, normal, shear, failed, short_any;
+};
+
+void integrate(const JointArgs& a, const size_t joint[4], int count, const GeometryV& g, const MaterialV& m,
+               const ScalesV& k, double Z, Sums& t) {
+  const JointRule& rule = *a.rule;
+  const size_t P = static_cast<size_t>(rule.points);
+  double* history[4];
+  for (int l = 0; l < 4; ++l) history[l] = &a.d_max[P * joint[l]];
+  const V4 zero = set1(0.0);
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) t.F[i][c] = zero;
+  t.mean_o = t.mean_s = t.energy = t.damage = t.normal = t.shear = t.failed = zero;
+  t.short_any = k.short_normal;
+  for (size_t q = 0; q < P; ++q) {
+    const double N0 = rule.N[q][0], N1 = rule.N[q][1], N2 = rule.N[q][2], w = rule.w[q];
+    V4 d[3], sv[3];
+    for (int c = 0; c < 3; ++c) d[c] = N0 * g.d[0][c] + N1 * g.d[1][c] + N2 * g.d[2][c];
+    const V4 o = d[0] * g.n[0] + d[1] * g.n[1] + d[2] * g.n[2];
+    for (int c = 0; c < 3; ++c) sv[c] = d[c] - o * g.n[c];
+    const V4 s = _mm256_sqrt_pd(sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
+    const V4 d_max = _mm256_setr_pd(history[0][q], history[1][q], history[2][q], history[3][q]);
+    const PointV r = point_law(m, k, a.softening, Z, o, s, d_max);
+    alignas(32) double updated[4];
+    _mm256_store_pd(updated, r.d_max);
+    for (int l = 0; l < count; ++l) history[l][q] = updated[l];
+    t.failed += simd::keep(_mm256_cmp_pd(r.d_max, set1(1.0), _CMP_GE_OQ), set1(1.0));
+    t.short_any = either(t.short_any, r.short_shear);
+    t.normal += r.normal_part;
+    t.shear += r.shear_part;
+    t.damage = _mm256_max_pd(t.damage, r.d_max);
+    const V4 wA = w * g.area;
+    t.mean_o += w * o;
+    t.mean_s += w * s;
+    t.energy += wA * r.energy;
+    V4 traction[3];
+    for (int c = 0; c < 3; ++c) traction[c] = r.sigma * g.n[c] + r.tau_per_slip * sv[c];
+    const V4 wAN[3] = {wA * N0, wA * N1, wA * N2};
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) t.F[i][c] += wAN[i] * traction[c];
+  }
+}
+
+void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointStatus& status) {
+  const size_t j0 = joint[0];
+  const int real = (1 << count) - 1;
+  status.short_softening += static_cast<size_t>(__builtin_popcount(lanes(t.short_any) & real));
+  if (!a.opening.empty()) simd::store1(t.mean_o, a.opening.data() + j0, count);
+  if (!a.slip.empty()) simd::store1(t.mean_s, a.slip.data() + j0, count);
+  const V4 breaks = _mm256_cmp_pd(t.failed, set1(a.rule->fail_count), _CMP_GE_OQ);
+  const V4 intact = _mm256_xor_pd(breaks, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
+  V4 f[18];
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) {
+      f[3 * i + c] = simd::keep(intact, -t.F[i][c]);
+      f[9 + 3 * i + c] = simd::keep(intact, t.F[i][c]);
+    }
+  double* out = a.corner_force.data() + 18 * j0;
+  for (int b = 0; b < 4; ++b) simd::store_block4(f + 4 * b, out + 4 * b, 18, count);
+  simd::store_pair(f[16], f[17], out + 16, 18, count);
+  if (!a.damage.empty()) simd::store1(simd::select(breaks, set1(1.0), t.damage), a.damage.data() + j0, count);
+  if (!a.stored_energy.empty())
+    simd::store1(simd::keep(intact, t.energy), a.stored_energy.data() + j0, count);
+  const int broke = lanes(breaks) & real;
+  if (broke == 0) return;
+  alignas(32) double normal[4], shear[4];
+  _mm256_store_pd(normal, t.normal);
+  _mm256_store_pd(shear, t.shear);
+  for (int l = 0; l < count; ++l)
+    if (broke & (1 << l))
+      joint_detail::record_break(
+          a, joint[l], normal[l] >= shear[l] ? JointBreakMode::tensile : JointBreakMode::shear, status);
+}
+
+void scalar_group(const JointArgs& a, const size_t joint[4], int count, JointStatus& status) {
+  for (int l = 0; l < count; ++l) status += joint_forces_scalar(a, joint[l], joint[l] + 1);
+}
+
+void process_group(const JointArgs& a, const size_t joint[4], int count, double Z, JointStatus& status) {
+  for (int l = 0; l < count; ++l)
+    if (a.broken[joint[l]] != 0) return scalar_group(a, joint, count, status);
+  GeometryV g;
+  load_geometry(a, joint, g);
+  if ((lanes(g.ok) & ((1 << count) - 1)) != (1 << count) - 1) return scalar_group(a, joint, count, status);
+  const MaterialV m = load_materials(a, joint);
+  const ScalesV k = scales(m, g.h, a.softening, Z);
+  Sums t;
+  integrate(a, joint, count, g, m, k, Z, t);
+  store(a, joint, count, t, status);
+}
+
+}  // namespace
+
+JointStatus joint_forces(const JointArgs& args, size_t begin, size_t end) {
+  JointStatus status;
+  const double Z = softening_integral();
+  for (size_t j = begin; j < end; j += 4) {
+    const int count = static_cast<int>(std::min<size_t>(4, end - j));
+    size_t joint[4];
+    for (int l = 0; l < 4; ++l) joint[l] = j + static_cast<size_t>(std::min(l, count - 1));
+    process_group(args, joint, count, Z, status);
+  }
+  return status;
+}
+
+bool joint_forces_vectorised() {
+  return true;
+}
+
+}  // namespace rift::kernels
+
+#endif  // __AVX2__

@@ -1,0 +1,46 @@
+#pragma once
+// Gmsh MSH 4.1 ASCII in and out, with our own parser (libgmsh would pull OpenCASCADE and FLTK into the
+// core for a few hundred lines of format). What is read:
+//   $MeshFormat (4.1, ASCII only), $PhysicalNames, $Entities, $Nodes and $Elements in entity blocks.
+//   Element type 4 (4-node tet) and 2 (3-node triangle) are kept; every other type is skipped and
+//   counted. Unknown sections ($Periodic, $NodeData, $Comments, ...) are skipped.
+// How groups become names:
+//   physical volume  -> region  (name from $PhysicalNames, else "volume_<tag>"); a tet in no physical
+//                       volume goes to region "domain"; an entity in several physical volumes gives
+//                       its tets the first one listed.
+//   physical surface -> surface (name from $PhysicalNames, else "surface_<tag>"); a triangle whose
+//                       entity is in several physical surfaces is listed once per surface; a triangle
+//                       in none is dropped (counted).
+//   Regions and surfaces are ordered by physical tag; "domain", when needed, comes last.
+// Node tags may be sparse; nodes are renumbered densely in file order, and nodes that no tet uses are
+// dropped (a solid node without mass would break the physics).
+// Tets with negative orientation are flipped (nodes 1 and 2 swapped); a degenerate tet is an error.
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/mesh/tet_mesh.hpp"
+
+namespace rift {
+
+// What read_msh did besides building the mesh, for the log.
+struct MshReadStats {
+  size_t nodes_in_file = 0;
+  size_t unused_nodes_dropped = 0;  // nodes referenced by no tet
+  size_t tets = 0;
+  size_t flipped_tets = 0;                               // negative orientation in the file, fixed
+  size_t triangles_without_surface = 0;                  // triangles in no physical surface, dropped
+  std::vector<std::pair<int, size_t>> skipped_elements;  // Gmsh element type -> count, by type
+};
+
+// Reads a Gmsh MSH 4.1 ASCII file; coordinates are multiplied by `scale` (1e-3 for a mesh in mm).
+// Throws rift::Error "path:line: expected ..., found ..." on anything malformed.
+TetMesh read_msh(const std::string& path, double scale = 1.0, MshReadStats* stats = nullptr);
+
+// Writes `mesh` as MSH 4.1 ASCII: one physical volume per region, one physical surface per surface
+// name (tags 1, 2, ... in name order), coordinates in shortest round-trip form, so that read_msh gives
+// back the same mesh (nodes no tet uses excepted). Throws rift::Error if the file cannot be written.
+void write_msh(const TetMesh& mesh, const std::string& path);
+
+}  // namespace rift

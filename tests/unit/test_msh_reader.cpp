@@ -1,0 +1,244 @@
+// Gmsh MSH 4.1 reader and writer, on small files the test writes itself.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "engine/core/error.hpp"
+#include "engine/mesh/msh_reader.hpp"
+
+namespace rift {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_folder() {
+  const fs::path dir = fs::temp_directory_path() / ("rift_test_msh_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const fs::path path = temp_folder() / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path.string();
+}
+
+// 1-based number of the first line containing `marker` (how the tests know which line an error is on).
+int line_of(const std::string& text, const std::string& marker) {
+  const size_t pos = text.find(marker);
+  EXPECT_NE(pos, std::string::npos) << marker;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+// Three tets on sparse node tags 10..60 plus an orphan node 70 that only a point element uses.
+// Tet 105 is positive; 106 and 107 are negative in the file. Volume entity 1 is physical 7 "rock",
+// entity 2 is physical 9 (no name), entity 3 is in no physical group. Surface entity 1 is in physicals
+// 3 "base" and 5 (no name); entity 2 in "base"; entity 3 in none.
+const std::string kCube = R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Comments
+anything at all, even $Nodes-like words
+$EndComments
+$PhysicalNames
+3
+3 7 "rock"
+2 3 "base"
+1 11 "an edge"
+$EndPhysicalNames
+$Entities
+1 1 3 3
+1 0 0 0 0
+1 0 0 0 1 0 0 1 11 2 1 -1
+1 0 0 0 1 1 1 2 3 5 0
+2 0 0 0 1 1 1 1 3 0
+3 0 0 0 1 1 1 0 0
+1 0 0 0 1 1 1 1 7 0
+2 0 0 0 1 1 1 1 9 0
+3 0 0 -1 1 1 1 0 0
+$EndEntities
+$Nodes
+2 7 10 70
+0 1 0 1
+70
+5 5 5
+3 1 0 6
+10
+20
+30
+40
+50
+60
+0 0 0
+1 0 0
+0 1 0
+0 0 1
+1 1 1
+0 0 -1
+$EndNodes
+$Elements
+8 8 100 107
+0 1 15 1
+100 70
+1 1 1 1
+101 10 20
+2 1 2 1
+102 10 20 40
+2 2 2 1
+103 20 50 30
+2 3 2 1
+104 10 30 40
+3 1 4 1
+105 10 20 30 40
+3 2 4 1
+106 20 40 30 50
+3 3 4 1
+107 10 20 30 60
+$EndElements
+$NodeData
+1
+"displacement"
+$EndNodeData
+)";
+
+TEST(MshReader, ReadsNamesTagsAndOrientation) {
+  MshReadStats stats;
+  const TetMesh mesh = read_msh(write_file("cube.msh", kCube), 2.0, &stats);
+
+  // Node 70 is used by no tet: dropped; the rest keep file order, scaled by 2.
+  ASSERT_EQ(mesh.nodes.size(), 6u);
+  EXPECT_EQ(mesh.nodes[0], (std::array<double, 3>{0, 0, 0}));
+  EXPECT_EQ(mesh.nodes[4], (std::array<double, 3>{2, 2, 2}));
+  EXPECT_EQ(mesh.nodes[5], (std::array<double, 3>{0, 0, -2}));
+
+  // 105 as is; 106 (20 40 30 50) and 107 (10 20 30 60) flipped by swapping their 2nd and 3rd nodes.
+  ASSERT_EQ(mesh.tets.size(), 3u);
+  EXPECT_EQ(mesh.tets[0], (std::array<int32_t, 4>{0, 1, 2, 3}));
+  EXPECT_EQ(mesh.tets[1], (std::array<int32_t, 4>{1, 2, 3, 4}));
+  EXPECT_EQ(mesh.tets[2], (std::array<int32_t, 4>{0, 2, 1, 5}));
+
+  // Regions by physical tag (7 "rock", 9 unnamed), then "domain" for the tet in no physical volume.
+  EXPECT_EQ(mesh.region_names, (std::vector<std::string>{"rock", "volume_9", "domain"}));
+  EXPECT_EQ(mesh.tet_region, (std::vector<int32_t>{0, 1, 2}));
+
+  // Triangle 102 is in two physical surfaces: listed twice; 104 is in none: dropped.
+  EXPECT_EQ(mesh.surface_names, (std::vector<std::string>{"base", "surface_5"}));
+  ASSERT_EQ(mesh.triangles.size(), 3u);
+  EXPECT_EQ(mesh.triangles[0], (std::array<int32_t, 3>{0, 1, 3}));
+  EXPECT_EQ(mesh.triangles[1], (std::array<int32_t, 3>{0, 1, 3}));
+  EXPECT_EQ(mesh.triangles[2], (std::array<int32_t, 3>{1, 4, 2}));
+  EXPECT_EQ(mesh.triangle_surface, (std::vector<int32_t>{0, 1, 0}));
+
+  EXPECT_EQ(stats.nodes_in_file, 7u);
+  EXPECT_EQ(stats.unused_nodes_dropped, 1u);
+  EXPECT_EQ(stats.tets, 3u);
+  EXPECT_EQ(stats.flipped_tets, 2u);
+  EXPECT_EQ(stats.triangles_without_surface, 1u);
+  EXPECT_EQ(stats.skipped_elements, (std::vector<std::pair<int, size_t>>{{1, 1}, {15, 1}}));
+}
+
+TEST(MshReader, WithoutPhysicalGroupsEverythingIsDomain) {
+  std::string text = kCube;
+  const size_t from = text.find("$PhysicalNames"), to = text.find("$Nodes\n");
+  text.erase(from, to - from);  // no names, no entities
+  const TetMesh mesh = read_msh(write_file("bare.msh", text));
+  EXPECT_EQ(mesh.region_names, (std::vector<std::string>{"domain"}));
+  EXPECT_EQ(mesh.tet_region, (std::vector<int32_t>{0, 0, 0}));
+  EXPECT_TRUE(mesh.surface_names.empty());
+  EXPECT_TRUE(mesh.triangles.empty());
+}
+
+// Expects read_msh on `text` to throw an error on the line holding `marker`, mentioning `fragment`.
+void expect_error(const std::string& name, const std::string& text, const std::string& marker,
+                  const std::string& fragment) {
+  const std::string path = write_file(name, text);
+  const std::string where = path + ":" + std::to_string(line_of(text, marker)) + ": expected ";
+  try {
+    read_msh(path);
+    ADD_FAILURE() << name << ": no error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(where, 0), 0u) << message << "\n  should start with " << where;
+    EXPECT_NE(message.find(fragment), std::string::npos) << message << "\n  should mention " << fragment;
+  }
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+TEST(MshReader, RejectsOtherVersionsWithConversionHint) {
+  expect_error("v22.msh", replace(kCube, "4.1 0 8", "2.2 0 8"), "2.2 0 8", "gmsh in.msh -save -format msh41");
+  expect_error("binary.msh", replace(kCube, "4.1 0 8", "4.1 1 8"), "4.1 1 8", "binary");
+}
+
+TEST(MshReader, RejectsTruncatedNodes) {
+  // The block announces 6 nodes but the section ends after 5 coordinate lines.
+  const std::string text = replace(kCube, "1 1 1\n0 0 -1\n$EndNodes", "1 1 1\n$EndNodes");
+  expect_error("truncated.msh", text, "$EndNodes", "node coordinate");
+}
+
+TEST(MshReader, RejectsMissingNodeTag) {
+  const std::string text = replace(kCube, "105 10 20 30 40", "105 10 20 30 41");
+  expect_error("missing_node.msh", text, "105 10 20 30 41", "41 in element 105");
+}
+
+TEST(MshReader, RejectsCountMismatchAndMissingEnd) {
+  expect_error("count.msh", replace(kCube, "2 7 10 70", "2 8 10 70"), "$EndNodes",
+               "8 nodes as announced on line");
+  expect_error("noend.msh", replace(kCube, "$EndNodes", "$EndNode"), "$EndNode\n", "$EndNodes");
+  expect_error("noend_elements.msh", replace(kCube, "$EndElements", "$Elements"), "$Elements\n$NodeData",
+               "$EndElements");
+}
+
+TEST(MshReader, RejectsNonNumericTokenAndDegenerateTet) {
+  expect_error("token.msh", replace(kCube, "0 0 -1\n", "0 zero -1\n"), "0 zero -1", "'zero'");
+  // Node 50 moved into the plane x + y + z = 1 of nodes 20, 30, 40: element 106 is flat.
+  expect_error("flat.msh", replace(kCube, "1 1 1\n0 0 -1", "0.5 0.5 0\n0 0 -1"), "106 20 40 30 50",
+               "element 106");
+}
+
+TEST(MshReader, RejectsUnterminatedUnknownSection) {
+  const std::string text = replace(kCube, "$EndNodeData\n", "");
+  expect_error("unterminated.msh", text, "$NodeData", "$EndNodeData");
+}
+
+TEST(MshWriter, RoundTripGivesTheSameMesh) {
+  TetMesh mesh = read_msh(write_file("cube_rt.msh", kCube), 1e-3);
+  mesh.nodes[1][0] = 0.1 + 0.2;  // not exactly representable in few digits: must still round-trip
+  const std::string path = (temp_folder() / "written.msh").string();
+  write_msh(mesh, path);
+  const TetMesh back = read_msh(path);
+  EXPECT_EQ(back.nodes, mesh.nodes);
+  EXPECT_EQ(back.tets, mesh.tets);
+  EXPECT_EQ(back.tet_region, mesh.tet_region);
+  EXPECT_EQ(back.region_names, mesh.region_names);
+  EXPECT_EQ(back.triangles, mesh.triangles);
+  EXPECT_EQ(back.triangle_surface, mesh.triangle_surface);
+  EXPECT_EQ(back.surface_names, mesh.surface_names);
+}
+
+TEST(MshWriter, RoundTripKeepsInterleavedGroupsInOrder) {
+  TetMesh mesh;
+  mesh.nodes = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  mesh.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}, {0, 1, 2, 3}};
+  mesh.region_names = {"a", "b"};
+  mesh.tet_region = {1, 0, 1};  // three runs: three element blocks
+  mesh.surface_names = {"s"};
+  mesh.triangles = {{0, 1, 2}};
+  mesh.triangle_surface = {0};
+  const std::string path = (temp_folder() / "interleaved.msh").string();
+  write_msh(mesh, path);
+  const TetMesh back = read_msh(path);
+  EXPECT_EQ(back.tets, mesh.tets);
+  EXPECT_EQ(back.tet_region, mesh.tet_region);
+  EXPECT_EQ(back.region_names, mesh.region_names);
+}
+
+}  // namespace
+}  // namespace rift

@@ -1,6 +1,10 @@
 # Flags shared by every Rift target, carried by an interface target so third-party code is unaffected.
 add_library(rift_options INTERFACE)
 target_compile_options(rift_options INTERFACE -Wall -Wextra -Wno-unused-parameter)
+# GCC 12 at -O3 reports false -Wrestrict positives inside std::string's own code (GCC bug 105329).
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  target_compile_options(rift_options INTERFACE -Wno-restrict)
+endif()
 if(RIFT_NATIVE)
   target_compile_options(rift_options INTERFACE -march=native)
 endif()

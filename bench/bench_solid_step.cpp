@@ -7,6 +7,8 @@
 #include <memory>
 #include <string>
 
+#include <spdlog/spdlog.h>
+
 #include "bench/bench_common.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"

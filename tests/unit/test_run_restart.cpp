@@ -111,3 +111,22 @@ TEST(Run, InputErrorFoundWhileBuildingWritesNothing) {
   }
   EXPECT_FALSE(fs::exists(dir));
 }
+
+TEST(Run, NoSolidSectionMeansNoSolidSystems) {
+  // Model only what the scene requires: without a solid section the run has no solid tables or systems.
+  const auto result = read_scene_text(
+      "scene: {name: mesh-only}\ntime: {end: 1.0e-6, dt: 1.0e-7}\n"
+      "mesh: {generate: {box: [0.02, 0.02, 0.02], size_min: 0.01, size_max: 0.01}}\n",
+      "inline", ".");
+  ASSERT_TRUE(result.scene) << result.errors.front().format();
+  RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  Simulation sim(*result.scene, o);
+  EXPECT_TRUE(sim.world().models.empty());
+  EXPECT_TRUE(sim.world().systems().empty());
+  EXPECT_FALSE(sim.world().store.has("solid_node"));
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.completed);
+  EXPECT_EQ(r.steps, 10);
+}

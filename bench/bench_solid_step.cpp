@@ -2,12 +2,11 @@
 // the step graph) on generated meshes, at 1 and 2 threads. Items are tet-steps: what a user's scene
 // costs per tet and step, schedule included. (The per-kernel benchmarks carry the byte models.)
 #include <benchmark/benchmark.h>
+#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <memory>
 #include <string>
-
-#include <spdlog/spdlog.h>
 
 #include "bench/bench_common.hpp"
 #include "engine/scene/load_scene.hpp"
@@ -22,8 +21,9 @@ std::string block_scene(double tets) {
   const double h = std::cbrt(volume * 0.12 / tets);
   return "scene: {name: bench-solid}\n"
          "time: {end: 1.0, safety: 0.5}\n"
-         "mesh:\n  generate: {box: [0.1, 0.05, 0.05], size_min: " + std::to_string(h) + ", size_max: " +
-         std::to_string(h) + "}\n"
+         "mesh:\n  generate: {box: [0.1, 0.05, 0.05], size_min: " +
+         std::to_string(h) + ", size_max: " + std::to_string(h) +
+         "}\n"
          "solid:\n  materials: [{name: rock, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05}]\n"
          "  boundaries:\n    - {surface: xmin, type: fixed}\n"
          "    - {surface: xmax, type: traction, direction: [1, 0, 0], value: 1.0e6}\n";

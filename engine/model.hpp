@@ -4,12 +4,11 @@
 // step, health after a step, fields to write, metrics for the time series and the summary).
 // A model exists in a run only when its section is in the scene.
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "engine/io/xdmf_series.hpp"
 #include "engine/schedule/system.hpp"

@@ -1,11 +1,11 @@
 #include "engine/simulation.hpp"
 
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
@@ -30,11 +30,12 @@ std::atomic<bool>& Simulation::interrupt_flag() {
   return flag;
 }
 
-Simulation::Simulation(Scene scene, RunOptions options) : scene_(std::move(scene)), options_(std::move(options)) {
+Simulation::Simulation(Scene scene, RunOptions options)
+    : scene_(std::move(scene)), options_(std::move(options)) {
   // Everything that can reject the input happens before the output folder is touched.
   if (options_.write_output) buffer_log_messages();
-  spdlog::info("scene '{}' ({}), hash {}", scene_.name, scene_.source_file.empty() ? "built-in" : scene_.source_file,
-               scene_.hash);
+  spdlog::info("scene '{}' ({}), hash {}", scene_.name,
+               scene_.source_file.empty() ? "built-in" : scene_.source_file, scene_.hash);
   world_ = build_world(scene_);
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
@@ -66,7 +67,9 @@ void Simulation::choose_dt() {
           "Lower time.dt (or remove it to use time.safety x the stable step), or set time.allow_unstable_dt: "
           "true to run it on purpose.",
           requested, stable, requested / stable));
-    if (requested > stable) spdlog::warn("time.dt = {:.6g} s exceeds the stable step {:.6g} s (allowed by the scene)", requested, stable);
+    if (requested > stable)
+      spdlog::warn("time.dt = {:.6g} s exceeds the stable step {:.6g} s (allowed by the scene)", requested,
+                   stable);
   } else {
     if (!std::isfinite(stable))
       throw Error("time.dt: the scene has no model that sets a stable step, so time.dt must be given");
@@ -76,8 +79,8 @@ void Simulation::choose_dt() {
   total_steps_ = static_cast<int64_t>(std::ceil(t.end / requested - 1e-9));
   total_steps_ = std::max<int64_t>(total_steps_, 1);
   dt_ = t.end / static_cast<double>(total_steps_);
-  spdlog::info("dt = {:.6g} s (stable {:.6g} s), {} steps to t = {:.6g} s, {} thread(s)", dt_, stable, total_steps_,
-               t.end, options_.threads);
+  spdlog::info("dt = {:.6g} s (stable {:.6g} s), {} steps to t = {:.6g} s, {} thread(s)", dt_, stable,
+               total_steps_, t.end, options_.threads);
 }
 
 void Simulation::restart_from_latest() {
@@ -92,7 +95,8 @@ void Simulation::restart_from_latest() {
                 ", this scene resolves to " + scene_.hash + ". A restart continues the same scene; compare " +
                 (options_.out_dir / "scene.yaml").string() + " with your scene and overrides.");
   if (meta.dt != dt_)
-    throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s", meta.dt, dt_));
+    throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s",
+                            meta.dt, dt_));
   step_ = meta.step;
   outputs_written_ = meta.integers.count("outputs_written") ? meta.integers.at("outputs_written") : 0;
   series_->resume(time());
@@ -116,7 +120,8 @@ void Simulation::step_once() {
   ++step_;
   const StepContext after{step_, time(), dt_};
   for (const auto& m : world_->models)
-    if (auto diagnosis = m->check_health(after)) throw Error("run stopped by the " + m->name() + " guard: " + *diagnosis);
+    if (auto diagnosis = m->check_health(after))
+      throw Error("run stopped by the " + m->name() + " guard: " + *diagnosis);
 }
 
 RunResult Simulation::run() {
@@ -136,20 +141,22 @@ RunResult Simulation::run() {
       const bool last = step_ == total_steps_;
       if (options_.write_output) {
         if (step_ % metric_every == 0 || last) record_metrics();
-        const bool output_due = interval > 0 && time() >= static_cast<double>(outputs_written_) * interval * (1 - 1e-12);
+        const bool output_due =
+            interval > 0 && time() >= static_cast<double>(outputs_written_) * interval * (1 - 1e-12);
         if (output_due || last) write_output();
         const CheckpointSpec& c = scene_.checkpoint;
         const bool stop_here = options_.stop_after_step && step_ >= *options_.stop_after_step && !last;
         const bool interrupted = interrupt_flag().load();
         if ((c.every_steps > 0 && step_ % c.every_steps == 0) ||
-            (c.every_seconds > 0 && seconds_since(last_checkpoint) >= c.every_seconds) || stop_here || interrupted) {
+            (c.every_seconds > 0 && seconds_since(last_checkpoint) >= c.every_seconds) || stop_here ||
+            interrupted) {
           write_checkpoint();
           last_checkpoint = clock_type::now();
         }
         if (interrupted || stop_here) {
           result.stop_reason = interrupted ? "signal" : "stop_after_step";
-          spdlog::warn("stopped at step {} (t = {:.6g} s) by {}; continue with --restart latest", step_, time(),
-                       interrupted ? "a signal" : "--stop-after");
+          spdlog::warn("stopped at step {} (t = {:.6g} s) by {}; continue with --restart latest", step_,
+                       time(), interrupted ? "a signal" : "--stop-after");
           break;
         }
       } else if (options_.stop_after_step && step_ >= *options_.stop_after_step) {
@@ -178,8 +185,9 @@ RunResult Simulation::run() {
   result.wall_seconds = seconds_since(t0);
   if (options_.write_output) write_summary(result);
   log_timing_table();
-  spdlog::info("{} at step {} (t = {:.6g} s) in {:.2f} s, state hash {}", result.completed ? "finished" : "stopped",
-               step_, time(), result.wall_seconds, hex64(result.state_hash));
+  spdlog::info("{} at step {} (t = {:.6g} s) in {:.2f} s, state hash {}",
+               result.completed ? "finished" : "stopped", step_, time(), result.wall_seconds,
+               hex64(result.state_hash));
   return result;
 }
 
@@ -237,7 +245,8 @@ void Simulation::write_summary(const RunResult& result) const {
   auto& j = summary.root();
   j["rift_version"] = build::version;
   j["scene"] = {{"name", scene_.name}, {"file", scene_.source_file}, {"hash", scene_.hash}};
-  j["status"] = result.completed ? "completed" : (result.stop_reason.empty() ? "stopped" : result.stop_reason);
+  j["status"] =
+      result.completed ? "completed" : (result.stop_reason.empty() ? "stopped" : result.stop_reason);
   j["threads"] = options_.threads;
   j["steps"] = result.steps;
   j["total_steps"] = total_steps_;
@@ -258,7 +267,8 @@ void Simulation::write_summary(const RunResult& result) const {
 void Simulation::log_timing_table() const {
   double total = output_seconds_ + checkpoint_seconds_;
   for (const auto& t : graph_->timings()) total += t.seconds;
-  std::string table = fmt::format("{:<22} {:>10} {:>8} {:>12}\n", "system", "wall [s]", "share", "per call [us]");
+  std::string table =
+      fmt::format("{:<22} {:>10} {:>8} {:>12}\n", "system", "wall [s]", "share", "per call [us]");
   auto row = [&](const std::string& name, double s, int64_t calls) {
     table += fmt::format("{:<22} {:>10.3f} {:>7.1f}% {:>12.2f}\n", name, s, total > 0 ? 100 * s / total : 0.0,
                          calls > 0 ? 1e6 * s / calls : 0.0);

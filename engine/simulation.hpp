@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "engine/io/run_summary.hpp"
-#include "engine/schedule/step_graph.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/schedule/step_graph.hpp"
 #include "engine/world.hpp"
 
 namespace rift {
@@ -21,8 +21,8 @@ struct RunOptions {
   int threads = 1;
   bool restart_latest = false;
   bool progress = true;
-  bool write_output = true;                 // fields, time series, summary (off for pure benchmarks)
-  std::optional<int64_t> stop_after_step;   // stop (with a checkpoint) once this step is done: tests, studies
+  bool write_output = true;                // fields, time series, summary (off for pure benchmarks)
+  std::optional<int64_t> stop_after_step;  // stop (with a checkpoint) once this step is done: tests, studies
 };
 
 struct RunResult {

@@ -33,7 +33,8 @@ std::unique_ptr<World> build_world(const Scene& scene) {
   world->mesh = load_mesh(scene.mesh);
   world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   world->mesh_quality = measure_quality(world->mesh);
-  if (scene.solid) world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  if (scene.solid)
+    world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
   return world;
 }
 

@@ -10,7 +10,8 @@ size_t integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t
     double f[3] = {0.0, 0.0, 0.0};
     for (int32_t k = s.node_range[2 * n]; k < s.node_range[2 * n + 1]; ++k) {
       const int64_t slot = s.slots[k];
-      const double* src = slot < s.split_slot ? &s.primary[3 * slot] : &s.secondary[3 * (slot - s.split_slot)];
+      const double* src =
+          slot < s.split_slot ? &s.primary[3 * slot] : &s.secondary[3 * (slot - s.split_slot)];
       f[0] += src[0];
       f[1] += src[1];
       f[2] += src[2];

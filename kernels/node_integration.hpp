@@ -23,11 +23,11 @@ struct ForceSlots {
 struct NodeIntegrationArgs {
   double dt;
   double gravity[3];
-  std::span<double> x, v, f;              // 3 per node; f is overwritten with the gathered total force
-  std::span<const double> inv_mass;       // 1 per node (0 for a massless node: it then only follows BCs)
-  std::span<const uint8_t> free_mask;     // 3 per node: 1 integrate, 0 held at the prescribed velocity
-  std::span<const int32_t> held_velocity; // 1 per node: index into prescribed (-1: none, velocity 0)
-  std::span<const double> prescribed;     // 3 per boundary condition: velocity at t + dt/2
+  std::span<double> x, v, f;               // 3 per node; f is overwritten with the gathered total force
+  std::span<const double> inv_mass;        // 1 per node (0 for a massless node: it then only follows BCs)
+  std::span<const uint8_t> free_mask;      // 3 per node: 1 integrate, 0 held at the prescribed velocity
+  std::span<const int32_t> held_velocity;  // 1 per node: index into prescribed (-1: none, velocity 0)
+  std::span<const double> prescribed;      // 3 per boundary condition: velocity at t + dt/2
 };
 
 // Returns the number of nodes whose new position or velocity is not finite (0 in a healthy run).

@@ -6,9 +6,10 @@
 // These functions return the limit itself (alpha = 1); the caller applies its safety factor alpha.
 //
 // Viscous reduction. femdem.md 1d gives no step formula for it, only the size of the Y damping coefficient
-// (line 321): "eta = 2 h beta sqrt(E rho), 0 < beta < 1 (beta = 1 ≈ critical for the element's highest mode)".
-// Turned into a step limit here [D]: the highest element mode has omega = 2 / dt_e; the term eta D acts on it
-// as a dashpot against the P-wave modulus M = lambda + 2 mu (Kelvin-Voigt), so its damping ratio is
+// (line 321): "eta = 2 h beta sqrt(E rho), 0 < beta < 1 (beta = 1 ≈ critical for the element's highest
+// mode)". Turned into a step limit here [D]: the highest element mode has omega = 2 / dt_e; the term eta D
+// acts on it as a dashpot against the P-wave modulus M = lambda + 2 mu (Kelvin-Voigt), so its damping ratio
+// is
 //   xi = omega eta / (2 M) = eta / (M dt_e).
 // Leapfrog with the damping force taken from v(t - dt/2) (how central_difference.hpp is used) is stable for
 //   omega dt <= 2 (sqrt(1 + xi^2) - xi)

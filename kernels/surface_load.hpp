@@ -8,8 +8,8 @@
 namespace rift::kernels {
 
 struct FaceLoad {
-  double pressure;      // [Pa], positive pushes into the body
-  double traction[3];   // [Pa]
+  double pressure;     // [Pa], positive pushes into the body
+  double traction[3];  // [Pa]
 };
 
 // x: 3 per node; face_nodes: 3 per face, ordered so (x1-x0)x(x2-x0) points out of the body;

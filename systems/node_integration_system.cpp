@@ -30,7 +30,8 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   // The new velocity lives at t + dt/2, so prescribed velocities are evaluated there.
   for (size_t i = 0; i < conditions_.size(); ++i) {
     const SolidBoundarySpec& c = conditions_[i];
-    const double scale = c.kind == SolidBoundarySpec::Kind::velocity ? c.function(ctx.time + 0.5 * ctx.dt) : 0.0;
+    const double scale =
+        c.kind == SolidBoundarySpec::Kind::velocity ? c.function(ctx.time + 0.5 * ctx.dt) : 0.0;
     for (int k = 0; k < 3; ++k) prescribed_[3 * i + k] = c.direction[k] * scale;
   }
   Table& nodes = store_.table(solid::node_table);

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "engine/core/table.hpp"
-#include "engine/schedule/system.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/schedule/system.hpp"
 
 namespace rift {
 
@@ -24,7 +24,7 @@ class NodeIntegrationSystem : public System {
   Store& store_;
   std::vector<SolidBoundarySpec> conditions_;
   std::array<double, 3> gravity_;
-  std::vector<double> prescribed_;     // 3 per condition, evaluated each step
+  std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<size_t> block_non_finite_;
   size_t non_finite_ = 0;
 };

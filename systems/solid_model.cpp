@@ -48,7 +48,8 @@ double max_face_area(std::span<const double> x, const int32_t* t) {
     const double* a = &x[3 * t[(k + 1) % 4]];
     const double* b = &x[3 * t[(k + 2) % 4]];
     const double* c = &x[3 * t[(k + 3) % 4]];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                 w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     best = std::max(best, 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
   }
@@ -61,7 +62,8 @@ bool wants(const std::vector<std::string>& fields, const char* name) {
 
 }  // namespace
 
-SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec) : store_(store), spec_(spec) {
+SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
+    : store_(store), spec_(spec) {
   build_nodes_and_tets(mesh);
   assign_materials(mesh);
   apply_boundaries(mesh);
@@ -72,7 +74,9 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   integration_ = std::make_unique<NodeIntegrationSystem>(store_, velocity_conditions_, spec_.gravity);
 }
 
-std::vector<System*> SolidModel::systems() { return {loads_.get(), tet_forces_.get(), integration_.get()}; }
+std::vector<System*> SolidModel::systems() {
+  return {loads_.get(), tet_forces_.get(), integration_.get()};
+}
 
 void SolidModel::build_nodes_and_tets(const TetMesh& mesh) {
   Table& nodes = store_.add_table(solid::node_table);
@@ -109,12 +113,13 @@ void SolidModel::build_nodes_and_tets(const TetMesh& mesh) {
     for (int k = 0; k < 4; ++k) conn[4 * e + k] = mesh.tets[e][k];
     region[e] = mesh.tet_region.empty() ? 0 : mesh.tet_region[e];
   }
-  const size_t inverted =
-      kernels::tet_prepare(x0, conn, tets.span<double>("dm_inv"), tets.span<double>("volume0"), 0, tets.size());
+  const size_t inverted = kernels::tet_prepare(x0, conn, tets.span<double>("dm_inv"),
+                                               tets.span<double>("volume0"), 0, tets.size());
   if (inverted > 0)
-    throw Error("mesh: " + std::to_string(inverted) +
-                " tetrahedra have zero or negative volume; the mesh reader should have reoriented them, so the "
-                "mesh is degenerate. Regenerate it or check the file.");
+    throw Error(
+        "mesh: " + std::to_string(inverted) +
+        " tetrahedra have zero or negative volume; the mesh reader should have reoriented them, so the "
+        "mesh is degenerate. Regenerate it or check the file.");
 }
 
 void SolidModel::assign_materials(const TetMesh& mesh) {
@@ -126,8 +131,10 @@ void SolidModel::assign_materials(const TetMesh& mesh) {
     const MaterialSpec& s = spec_.materials[m];
     std::vector<bool> applies(std::max<size_t>(mesh.region_names.size(), 1), false);
     for (const auto& r : s.regions) {
-      if (r == "all") std::fill(applies.begin(), applies.end(), true);
-      else if (int32_t i = mesh.region_index(r); i >= 0) applies[i] = true;
+      if (r == "all")
+        std::fill(applies.begin(), applies.end(), true);
+      else if (int32_t i = mesh.region_index(r); i >= 0)
+        applies[i] = true;
       else
         throw Error("solid.materials[" + std::to_string(m) + "].regions: the mesh has no region '" + r +
                     "'; its regions are: " + join(mesh.region_names) + " (or use 'all')");
@@ -137,7 +144,8 @@ void SolidModel::assign_materials(const TetMesh& mesh) {
   }
   for (size_t e = 0; e < tets.size(); ++e)
     if (material[e] < 0)
-      throw Error("solid.materials: tet " + std::to_string(e) + " in region '" + mesh.region_names[region[e]] +
+      throw Error("solid.materials: tet " + std::to_string(e) + " in region '" +
+                  mesh.region_names[region[e]] +
                   "' has no material; list that region in a material's regions (or use 'all')");
 }
 
@@ -165,9 +173,12 @@ void SolidModel::apply_boundaries(const TetMesh& mesh) {
     const std::string key = "solid.boundaries[" + std::to_string(b) + "].surface";
     const int32_t surface = mesh.surface_index(bc.surface);
     if (surface < 0)
-      throw Error(key + ": the mesh has no surface '" + bc.surface + "'; its surfaces are: " + join(mesh.surface_names));
-    const bool is_velocity = bc.kind == SolidBoundarySpec::Kind::fixed || bc.kind == SolidBoundarySpec::Kind::velocity;
-    const int32_t index = static_cast<int32_t>(is_velocity ? velocity_conditions_.size() : load_conditions_.size());
+      throw Error(key + ": the mesh has no surface '" + bc.surface +
+                  "'; its surfaces are: " + join(mesh.surface_names));
+    const bool is_velocity =
+        bc.kind == SolidBoundarySpec::Kind::fixed || bc.kind == SolidBoundarySpec::Kind::velocity;
+    const int32_t index =
+        static_cast<int32_t>(is_velocity ? velocity_conditions_.size() : load_conditions_.size());
     (is_velocity ? velocity_conditions_ : load_conditions_).push_back(bc);
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       if (mesh.triangle_surface[t] != surface) continue;
@@ -279,16 +290,19 @@ std::optional<std::string> SolidModel::check_health(const StepContext& after) {
     double c[3] = {0, 0, 0};
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i) c[i] += 0.25 * x[3 * conn[4 * e + k] + i];
-    why << tet_forces_->inverted() << " tetrahedra inverted (J <= 0) at step " << after.step << ", t = " << after.time
-        << " s; first: tet " << e << " at (" << c[0] << ", " << c[1] << ", " << c[2] << ") m. Likely cause: a load "
-        << "too large or too sudden for the element (or a dt above the stable step). What to change: lower the load "
+    why << tet_forces_->inverted() << " tetrahedra inverted (J <= 0) at step " << after.step
+        << ", t = " << after.time << " s; first: tet " << e << " at (" << c[0] << ", " << c[1] << ", " << c[2]
+        << ") m. Likely cause: a load "
+        << "too large or too sudden for the element (or a dt above the stable step). What to change: lower "
+           "the load "
         << "or its rate, refine the mesh there, or reduce time.dt / time.safety.";
     return why.str();
   }
   if (integration_->non_finite_nodes() > 0) {
     why << integration_->non_finite_nodes() << " solid nodes have a non-finite position or velocity at step "
-        << after.step << ", t = " << after.time << " s. Likely cause: dt above the stable step (" << stable_dt_
-        << " s, set by tet " << critical_tet_ << ") or a load that grows without bound. What to change: reduce "
+        << after.step << ", t = " << after.time << " s. Likely cause: dt above the stable step ("
+        << stable_dt_ << " s, set by tet " << critical_tet_
+        << ") or a load that grows without bound. What to change: reduce "
         << "time.dt or time.safety, check loads and materials.";
     return why.str();
   }
@@ -316,18 +330,23 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
   g.mesh_revision = 0;
   g.points_move = true;
   auto node_field = [&](const char* name, const double* data) {
-    if (wants(fields, name)) g.fields.push_back({name, Center::node, 3, ElementType::f64, data, nodes.size()});
+    if (wants(fields, name))
+      g.fields.push_back({name, Center::node, 3, ElementType::f64, data, nodes.size()});
   };
   node_field("displacement", displacement_.data());
   node_field("velocity", nodes.span<double>("v").data());
   node_field("force", nodes.span<double>("f").data());
-  if (wants(fields, "stress")) g.fields.push_back({"stress", Center::cell, 6, ElementType::f64, stress.data(), tets.size()});
+  if (wants(fields, "stress"))
+    g.fields.push_back({"stress", Center::cell, 6, ElementType::f64, stress.data(), tets.size()});
   if (wants(fields, "principal_stress"))
-    g.fields.push_back({"principal_stress", Center::cell, 3, ElementType::f64, principal_.data(), tets.size()});
+    g.fields.push_back(
+        {"principal_stress", Center::cell, 3, ElementType::f64, principal_.data(), tets.size()});
   if (wants(fields, "region"))
-    g.fields.push_back({"region", Center::cell, 1, ElementType::i32, tets.span<int32_t>("region").data(), tets.size()});
+    g.fields.push_back(
+        {"region", Center::cell, 1, ElementType::i32, tets.span<int32_t>("region").data(), tets.size()});
   if (wants(fields, "material"))
-    g.fields.push_back({"material", Center::cell, 1, ElementType::i32, tets.span<int32_t>("material").data(), tets.size()});
+    g.fields.push_back(
+        {"material", Center::cell, 1, ElementType::i32, tets.span<int32_t>("material").data(), tets.size()});
   grids.push_back(std::move(g));
 }
 

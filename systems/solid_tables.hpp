@@ -18,6 +18,8 @@ inline constexpr const char* slot_table = "solid_force_slot";
 // solid_load_face: nodes (i32 x3), load (i32), corner_force (9)
 // solid_force_slot: slot (i32): the corner-force slots of every node, grouped by node
 
-inline std::string col(const char* table, const char* column) { return std::string(table) + "." + column; }
+inline std::string col(const char* table, const char* column) {
+  return std::string(table) + "." + column;
+}
 
 }  // namespace rift::solid

@@ -21,7 +21,8 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
     const double scale = s.function(ctx.time);
     kernels::FaceLoad& L = values_[i];
     L = {};
-    if (s.kind == SolidBoundarySpec::Kind::pressure) L.pressure = scale;
+    if (s.kind == SolidBoundarySpec::Kind::pressure)
+      L.pressure = scale;
     else
       for (int c = 0; c < 3; ++c) L.traction[c] = s.direction[c] * scale;
   }

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "engine/core/table.hpp"
-#include "engine/schedule/system.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/schedule/system.hpp"
 #include "kernels/surface_load.hpp"
 
 namespace rift {

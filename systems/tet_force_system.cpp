@@ -26,11 +26,16 @@ Access TetForceSystem::access() const {
 void TetForceSystem::run(const StepContext&) {
   Table& nodes = store_.table(solid::node_table);
   Table& tets = store_.table(solid::tet_table);
-  const kernels::TetForceArgs args{nodes.span<double>("x"),        nodes.span<double>("v"),
-                                   tets.span<int32_t>("nodes"),    tets.span<double>("dm_inv"),
-                                   tets.span<double>("volume0"),   tets.span<int32_t>("material"),
-                                   materials_,                     tets.span<double>("corner_force"),
-                                   tets.span<double>("stress"),    tets.span<double>("energy")};
+  const kernels::TetForceArgs args{nodes.span<double>("x"),
+                                   nodes.span<double>("v"),
+                                   tets.span<int32_t>("nodes"),
+                                   tets.span<double>("dm_inv"),
+                                   tets.span<double>("volume0"),
+                                   tets.span<int32_t>("material"),
+                                   materials_,
+                                   tets.span<double>("corner_force"),
+                                   tets.span<double>("stress"),
+                                   tets.span<double>("energy")};
   parallel_for(tets.size(), grain, [&](size_t begin, size_t end) {
     block_status_[begin / grain] = kernels::tet_forces(args, begin, end);
   });

@@ -1,9 +1,5 @@
 #include "engine/cli/commands.hpp"
 
-#include <csignal>
-#include <cstdio>
-#include <iostream>
-
 #include <CGAL/version.h>
 #include <H5public.h>
 #include <metis.h>
@@ -13,6 +9,9 @@
 
 #include <CLI/Version.hpp>
 #include <Eigen/Core>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
@@ -55,7 +54,7 @@ int run(const RunArgs& args) {
   if (!scene) return 2;
   RunOptions options;
   options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / scene->name
-                                        : std::filesystem::path(args.out_dir);
+                                         : std::filesystem::path(args.out_dir);
   options.threads = args.threads;
   options.restart_latest = args.restart == "latest";
   options.progress = !args.quiet;
@@ -88,22 +87,24 @@ int check(const SceneArgs& args) {
   init_logging(false, true);
   auto scene = read_scene(args);
   if (!scene) return 2;
-  std::cout << "# " << (args.scene.empty() ? default_scene_name : args.scene) << ": valid; resolved scene, hash "
-            << scene->hash << "\n"
+  std::cout << "# " << (args.scene.empty() ? default_scene_name : args.scene)
+            << ": valid; resolved scene, hash " << scene->hash << "\n"
             << scene->resolved_yaml << "\n";
   return 0;
 }
 
 int info() {
   std::cout << "Rift " << build::version << "\n"
-            << "build: " << build::build_type << ", " << build::compiler << ", native ISA: " << (build::native ? "yes" : "no")
+            << "build: " << build::build_type << ", " << build::compiler
+            << ", native ISA: " << (build::native ? "yes" : "no")
             << ", sanitizers: " << (build::sanitized ? "yes" : "no") << "\n"
             << "flags: " << build::cxx_flags << "\n";
   unsigned h5maj, h5min, h5rel;
   H5get_libversion(&h5maj, &h5min, &h5rel);
   std::printf("libraries:\n");
   std::printf("  Eigen       %d.%d.%d\n", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION, EIGEN_MINOR_VERSION);
-  std::printf("  oneTBB      %s (runtime interface %d)\n", TBB_VERSION_STRING, TBB_runtime_interface_version());
+  std::printf("  oneTBB      %s (runtime interface %d)\n", TBB_VERSION_STRING,
+              TBB_runtime_interface_version());
   std::printf("  HDF5        %u.%u.%u\n", h5maj, h5min, h5rel);
   std::printf("  METIS       %d.%d.%d\n", METIS_VER_MAJOR, METIS_VER_MINOR, METIS_VER_SUBMINOR);
   std::printf("  CGAL        %s\n", CGAL_VERSION_STR);

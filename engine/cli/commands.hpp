@@ -9,13 +9,13 @@
 namespace rift::cli {
 
 struct SceneArgs {
-  std::string scene;                    // path; empty: the built-in default scene
-  std::vector<std::string> overrides;   // --set key.path=value
+  std::string scene;                   // path; empty: the built-in default scene
+  std::vector<std::string> overrides;  // --set key.path=value
 };
 
 struct RunArgs {
   SceneArgs scene;
-  std::string out_dir;                  // empty: rift-out/<scene name>
+  std::string out_dir;  // empty: rift-out/<scene name>
   int threads = 1;
   std::string restart;                  // "" or "latest"
   std::optional<long long> stop_after;  // stop after this step with a checkpoint

@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "Run a scene (the built-in default scene when none is given)");
   run_cmd->add_option("scene", run_args.scene.scene, "scene file (YAML)");
   run_cmd->add_option("--out,-o", run_args.out_dir, "output folder (default rift-out/<scene name>)");
-  run_cmd->add_option("--set", run_args.scene.overrides, "override a scene value: key.path=value (repeatable)");
+  run_cmd->add_option("--set", run_args.scene.overrides,
+                      "override a scene value: key.path=value (repeatable)");
   run_cmd->add_option("--threads,-j", run_args.threads, "worker threads")->check(CLI::Range(1, 1024));
   run_cmd->add_option("--restart", run_args.restart, "continue from a checkpoint: 'latest'");
   run_cmd->add_option("--stop-after", run_args.stop_after, "stop after this step, writing a checkpoint");

@@ -38,7 +38,8 @@ class HandleMap {
   }
 
   std::optional<uint32_t> row(Handle h) const {
-    if (!h.valid() || h.slot >= generation_.size() || generation_[h.slot] != h.generation) return std::nullopt;
+    if (!h.valid() || h.slot >= generation_.size() || generation_[h.slot] != h.generation)
+      return std::nullopt;
     return row_of_slot_[h.slot];
   }
 

@@ -3,9 +3,9 @@
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/dist_sink.h>
 #include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 
 #include <fstream>
-#include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace rift {
 

@@ -1,9 +1,9 @@
 #pragma once
 // Logging: one spdlog logger for the whole engine, to the console and (during a run) to a log file
 // in the output folder.
-#include <filesystem>
-
 #include <spdlog/spdlog.h>
+
+#include <filesystem>
 
 namespace rift {
 

@@ -6,24 +6,36 @@ namespace rift {
 
 size_t element_size(ElementType type) {
   switch (type) {
-    case ElementType::f64: return 8;
-    case ElementType::f32: return 4;
-    case ElementType::i64: return 8;
-    case ElementType::i32: return 4;
-    case ElementType::u32: return 4;
-    case ElementType::u8: return 1;
+    case ElementType::f64:
+      return 8;
+    case ElementType::f32:
+      return 4;
+    case ElementType::i64:
+      return 8;
+    case ElementType::i32:
+      return 4;
+    case ElementType::u32:
+      return 4;
+    case ElementType::u8:
+      return 1;
   }
   return 0;
 }
 
 const char* element_type_name(ElementType type) {
   switch (type) {
-    case ElementType::f64: return "f64";
-    case ElementType::f32: return "f32";
-    case ElementType::i64: return "i64";
-    case ElementType::i32: return "i32";
-    case ElementType::u32: return "u32";
-    case ElementType::u8: return "u8";
+    case ElementType::f64:
+      return "f64";
+    case ElementType::f32:
+      return "f32";
+    case ElementType::i64:
+      return "i64";
+    case ElementType::i32:
+      return "i32";
+    case ElementType::u32:
+      return "u32";
+    case ElementType::u8:
+      return "u8";
   }
   return "?";
 }
@@ -51,7 +63,9 @@ Column& Table::column(std::string_view name) {
   if (Column* c = find(name)) return *c;
   throw Error("table " + name_ + " has no column " + std::string(name));
 }
-const Column& Table::column(std::string_view name) const { return const_cast<Table*>(this)->column(name); }
+const Column& Table::column(std::string_view name) const {
+  return const_cast<Table*>(this)->column(name);
+}
 
 void Table::resize(size_t rows) {
   rows_ = rows;
@@ -85,13 +99,17 @@ Table& Store::table(std::string_view name) {
   if (Table* t = find(name)) return *t;
   throw Error("no table " + std::string(name));
 }
-const Table& Store::table(std::string_view name) const { return const_cast<Store*>(this)->table(name); }
+const Table& Store::table(std::string_view name) const {
+  return const_cast<Store*>(this)->table(name);
+}
 
 Column& Store::column(std::string_view key) {
   const auto dot = key.find('.');
   if (dot == std::string_view::npos) throw Error("column key '" + std::string(key) + "' is not table.column");
   return table(key.substr(0, dot)).column(key.substr(dot + 1));
 }
-const Column& Store::column(std::string_view key) const { return const_cast<Store*>(this)->column(key); }
+const Column& Store::column(std::string_view key) const {
+  return const_cast<Store*>(this)->column(key);
+}
 
 }  // namespace rift

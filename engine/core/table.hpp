@@ -25,12 +25,30 @@ const char* element_type_name(ElementType type);
 
 template <class T>
 constexpr ElementType element_type_of();
-template <> constexpr ElementType element_type_of<double>() { return ElementType::f64; }
-template <> constexpr ElementType element_type_of<float>() { return ElementType::f32; }
-template <> constexpr ElementType element_type_of<int64_t>() { return ElementType::i64; }
-template <> constexpr ElementType element_type_of<int32_t>() { return ElementType::i32; }
-template <> constexpr ElementType element_type_of<uint32_t>() { return ElementType::u32; }
-template <> constexpr ElementType element_type_of<uint8_t>() { return ElementType::u8; }
+template <>
+constexpr ElementType element_type_of<double>() {
+  return ElementType::f64;
+}
+template <>
+constexpr ElementType element_type_of<float>() {
+  return ElementType::f32;
+}
+template <>
+constexpr ElementType element_type_of<int64_t>() {
+  return ElementType::i64;
+}
+template <>
+constexpr ElementType element_type_of<int32_t>() {
+  return ElementType::i32;
+}
+template <>
+constexpr ElementType element_type_of<uint32_t>() {
+  return ElementType::u32;
+}
+template <>
+constexpr ElementType element_type_of<uint8_t>() {
+  return ElementType::u8;
+}
 
 class Column {
  public:

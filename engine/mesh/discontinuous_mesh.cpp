@@ -97,8 +97,9 @@ DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bo
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto it = open_faces.find(key_of(mesh.triangles[t]));
     if (it == open_faces.end())
-      throw Error("mesh: surface triangle " + std::to_string(t) + " (vertices " + std::to_string(mesh.triangles[t][0]) +
-                  ", " + std::to_string(mesh.triangles[t][1]) + ", " + std::to_string(mesh.triangles[t][2]) +
+      throw Error("mesh: surface triangle " + std::to_string(t) + " (vertices " +
+                  std::to_string(mesh.triangles[t][0]) + ", " + std::to_string(mesh.triangles[t][1]) + ", " +
+                  std::to_string(mesh.triangles[t][2]) +
                   ") is not a boundary face of the tetrahedra; surfaces must lie on the mesh boundary");
     const int32_t e = it->second.first;
     for (int i = 0; i < 3; ++i) {

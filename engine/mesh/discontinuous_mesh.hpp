@@ -17,14 +17,14 @@
 namespace rift {
 
 struct DiscontinuousMesh {
-  std::vector<std::array<double, 3>> nodes;        // solid nodes (copies share coordinates)
-  std::vector<int32_t> node_vertex;                // the input mesh vertex each solid node copies
-  std::vector<std::array<int32_t, 4>> tets;        // same order as the input tets, solid node ids
-  std::vector<uint8_t> tet_in_zone;                // 1 when the tet has private nodes
-  std::vector<std::array<int32_t, 6>> joints;      // corners as above
-  std::vector<std::array<int32_t, 2>> joint_tets;  // (tet A, tet B)
-  std::vector<std::array<int32_t, 2>> joint_faces; // local face index (opposite corner) in A and in B
-  std::vector<std::array<int32_t, 3>> triangles;   // the input's surface triangles on solid node ids
+  std::vector<std::array<double, 3>> nodes;         // solid nodes (copies share coordinates)
+  std::vector<int32_t> node_vertex;                 // the input mesh vertex each solid node copies
+  std::vector<std::array<int32_t, 4>> tets;         // same order as the input tets, solid node ids
+  std::vector<uint8_t> tet_in_zone;                 // 1 when the tet has private nodes
+  std::vector<std::array<int32_t, 6>> joints;       // corners as above
+  std::vector<std::array<int32_t, 2>> joint_tets;   // (tet A, tet B)
+  std::vector<std::array<int32_t, 2>> joint_faces;  // local face index (opposite corner) in A and in B
+  std::vector<std::array<int32_t, 3>> triangles;    // the input's surface triangles on solid node ids
 };
 
 // in_zone(tet index) tells which tets get private nodes. Boundary triangles of the input are mapped to

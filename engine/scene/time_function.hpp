@@ -9,10 +9,10 @@ namespace rift {
 struct TimeFunction {
   enum class Kind { constant, ramp, table };
   Kind kind = Kind::constant;
-  double value = 0.0;        // constant: the value; ramp: value up to start_time
-  double start_time = 0.0;   // ramp: when the ramp begins [s]
-  double rate = 0.0;         // ramp: d(value)/dt after start_time [unit/s]
-  double limit = 0.0;        // ramp: value at which it stops growing (ignored when !has_limit)
+  double value = 0.0;       // constant: the value; ramp: value up to start_time
+  double start_time = 0.0;  // ramp: when the ramp begins [s]
+  double rate = 0.0;        // ramp: d(value)/dt after start_time [unit/s]
+  double limit = 0.0;       // ramp: value at which it stops growing (ignored when !has_limit)
   bool has_limit = false;
   std::vector<std::pair<double, double>> points;  // table: (time, value), strictly increasing time
 
@@ -21,7 +21,8 @@ struct TimeFunction {
 
 inline double TimeFunction::operator()(double t) const {
   switch (kind) {
-    case Kind::constant: return value;
+    case Kind::constant:
+      return value;
     case Kind::ramp: {
       double v = t <= start_time ? value : value + rate * (t - start_time);
       if (has_limit && ((rate >= 0 && v > limit) || (rate < 0 && v < limit))) v = limit;

@@ -57,7 +57,7 @@ class StepGraph {
 
   std::vector<System*> systems_;
   std::vector<Access> access_;
-  std::vector<std::vector<int>> successors_;       // after transitive reduction
+  std::vector<std::vector<int>> successors_;        // after transitive reduction
   std::vector<std::vector<std::string>> edge_why_;  // column that forced each edge (parallel to successors_)
   std::vector<SystemTiming> timings_;
   int threads_;

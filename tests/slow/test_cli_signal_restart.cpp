@@ -1,9 +1,9 @@
 // The CLI end to end: exit codes, and a run stopped by SIGTERM that continues with --restart latest to
 // the same final state (summary.json state_hash) as an uninterrupted run.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -71,8 +71,8 @@ TEST(Cli, ExitCodesAndMessages) {
 }
 
 TEST(Cli, SigtermThenRestartGivesTheStraightRunsState) {
-  const std::vector<std::string> common{"--set", "time.end=4.0e-4", "--set", "output.interval=1.0e-4", "--threads",
-                                        "2"};
+  const std::vector<std::string> common{
+      "--set", "time.end=4.0e-4", "--set", "output.interval=1.0e-4", "--threads", "2"};
   const fs::path straight = temp("straight"), stopped = temp("stopped"), log = temp("log2");
   std::vector<std::string> a{"run", scene, "--out", straight.string()};
   a.insert(a.end(), common.begin(), common.end());

@@ -56,8 +56,8 @@ TEST(DiscontinuousMesh, WholeZoneGivesPrivateNodesAndOneJointPerInteriorFace) {
   const TetMesh m = kuhn_cube();
   ASSERT_EQ(m.triangles.size(), 12u);
   const DiscontinuousMesh d = make_discontinuous(m, [](size_t) { return true; });
-  EXPECT_EQ(d.nodes.size(), 24u);   // 4 per tet
-  EXPECT_EQ(d.joints.size(), 6u);   // (4 x 6 - 12) / 2 interior faces
+  EXPECT_EQ(d.nodes.size(), 24u);  // 4 per tet
+  EXPECT_EQ(d.joints.size(), 6u);  // (4 x 6 - 12) / 2 interior faces
   for (size_t j = 0; j < d.joints.size(); ++j) {
     const auto& J = d.joints[j];
     for (int i = 0; i < 3; ++i) {

@@ -1,7 +1,6 @@
 // A whole run through the same path as `rift run`: restart continues bit-for-bit, and the state is
 // identical on 1, 2 and 4 threads.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>

@@ -44,7 +44,8 @@ TEST(StepGraph, EdgesFollowReadWriteConflictsAndAreReduced) {
   FakeSystem d("output_probe", {{"node.x", "tet.f"}, {}});
   StepGraph g({&a, &b, &c, &d}, 1);
   EXPECT_FALSE(has_edge(g, 0, 1));  // loads and tets only read shared columns: concurrent
-  EXPECT_TRUE(has_edge(g, 0, 2));   // integrate reads face.f (read after write) and writes node.x (write after read)
+  EXPECT_TRUE(
+      has_edge(g, 0, 2));  // integrate reads face.f (read after write) and writes node.x (write after read)
   EXPECT_TRUE(has_edge(g, 1, 2));
   EXPECT_TRUE(has_edge(g, 2, 3));   // probe reads node.x written by integrate
   EXPECT_FALSE(has_edge(g, 1, 3));  // implied through integrate: reduced away
@@ -70,8 +71,14 @@ TEST(StepGraph, ReaderAlwaysRunsAfterWriter) {
     volatile double s = 0;
     for (int i = 0; i < 20000; ++i) s = s + i;
   };
-  FakeSystem w("writer", {{}, {"t.c"}}, [&] { work(); seen[0] = counter++; });
-  FakeSystem other("independent", {{"u.a"}, {"u.b"}}, [&] { work(); seen[1] = counter++; });
+  FakeSystem w("writer", {{}, {"t.c"}}, [&] {
+    work();
+    seen[0] = counter++;
+  });
+  FakeSystem other("independent", {{"u.a"}, {"u.b"}}, [&] {
+    work();
+    seen[1] = counter++;
+  });
   FakeSystem r("reader", {{"t.c"}, {}}, [&] { seen[2] = counter++; });
   StepGraph g({&w, &other, &r}, 2);
   g.set_tracing(true);

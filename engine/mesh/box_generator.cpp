@@ -40,6 +40,7 @@ constexpr double kFeatureAngleDeg = 1.0;
 // Perturbation tries to lift every tet's minimum dihedral angle above this. Higher bounds cost more
 // time for no gain on the notched blocks we tried (10 and 15 degrees gave the same mesh).
 constexpr double kPerturbBoundDeg = 10.0;
+constexpr int kRandomTries = 20;  // random perturbation attempts per vertex (see remove_slivers)
 // Exudation works on tets whose minimum dihedral angle is below this. With 0 ("all tets") it took
 // 5-10 times longer for the same worst angle on the blocks we tried.
 constexpr double kExudeBoundDeg = 20.0;
@@ -100,28 +101,46 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Perturbation then exudation, both with sliver bounds on the minimum dihedral angle. Global smoothers
-// (ODT, Lloyd) are not used: on a narrow wedge they moved the boundary off the notch planes (volume
-// error 1e-4 relative), which breaks the exact geometry promised above.
-void remove_slivers(C3t3& c3t3, const Domain& domain, BoxMeshStats& stats) {
-  namespace p = CGAL::parameters;
-  auto start = std::chrono::steady_clock::now();
-  // CGAL's default perturbation set. Without its random perturbation the deterministic ones alone
-  // gave nothing on notched blocks; with fewer random tries (8 instead of 40) it ran 4-10 times faster
-  // for a minimum dihedral angle about 1 degree lower.
-  CGAL::perturb_mesh_3(c3t3, domain, p::time_limit = 0, p::sliver_bound = kPerturbBoundDeg);
-  stats.perturb_seconds = seconds_since(start);
+// CGAL's default perturbation set, except that the random perturbation gets kRandomTries per vertex
+// instead of 100. Its cost is erratic (a bound it cannot reach is retried at length): on the blocks we
+// tried, 100 tries took up to 10 s and 20 tries at most 1.5 s, for worst dihedral angles that differed
+// by a degree or two either way. The deterministic perturbations alone gave nothing.
+void perturb(C3t3& c3t3, const Domain& domain) {
+  namespace M = CGAL::Mesh_3;
+  using Criterion = M::Min_dihedral_angle_criterion<Tr>;
+  M::Sliver_perturber<C3t3, Domain, Criterion> perturber(c3t3, domain,
+                                                         Criterion(kPerturbBoundDeg, c3t3.triangulation()));
+  // The perturber takes ownership of these.
+  perturber.add_perturbation(new M::Sq_radius_perturbation<C3t3, Domain, Criterion>(40, 0.05));
+  perturber.add_perturbation(new M::Volume_perturbation<C3t3, Domain, Criterion>(40, 0.05));
+  perturber.add_perturbation(new M::Dihedral_angle_perturbation<C3t3, Domain, Criterion>(40, 0.05));
+  perturber.add_perturbation(new M::Li_random_perturbation<C3t3, Domain, Criterion>(kRandomTries, 0.15));
+  perturber.set_time_limit(0);  // no wall-clock dependence: the tries bound the work
+  perturber();
+}
 
-  start = std::chrono::steady_clock::now();
+// Returns true when the step cap stopped it.
+bool exude(C3t3& c3t3) {
   using Criterion = CGAL::Mesh_3::Min_dihedral_angle_criterion<Tr>;
-  const Criterion criterion(kExudeBoundDeg, c3t3.triangulation());
-  CGAL::Mesh_3::Slivers_exuder<C3t3, Criterion, CappedExudeVisitor> exuder(c3t3, criterion);
-  CappedExudeVisitor visitor{0, kExudeStepsPerCell * c3t3.number_of_cells_in_complex()};
+  CGAL::Mesh_3::Slivers_exuder<C3t3, Criterion, CappedExudeVisitor> exuder(
+      c3t3, Criterion(kExudeBoundDeg, c3t3.triangulation()));
   try {
-    exuder(visitor);
+    exuder(CappedExudeVisitor{0, kExudeStepsPerCell * c3t3.number_of_cells_in_complex()});
   } catch (const ExudeStepCap&) {
-    stats.exude_capped = true;
+    return true;
   }
+  return false;
+}
+
+// Perturbation then exudation, both aiming at the minimum dihedral angle. Global smoothers (ODT,
+// Lloyd) are not used: on a narrow wedge they moved the boundary off the notch planes (volume error
+// 1e-4 relative), which breaks the exact geometry promised in the header.
+void remove_slivers(C3t3& c3t3, const Domain& domain, BoxMeshStats& stats) {
+  auto start = std::chrono::steady_clock::now();
+  perturb(c3t3, domain);
+  stats.perturb_seconds = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  stats.exude_capped = exude(c3t3);
   stats.exude_seconds = seconds_since(start);
 }
 

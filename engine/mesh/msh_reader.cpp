@@ -68,7 +68,8 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
 
 class MshParser {
  public:
-  MshParser(std::string_view text, const std::string& path, double scale) : cur_(text, path), scale_(scale) {}
+  MshParser(std::string_view text, const std::string& path, double scale)
+      : cur_(text, path), scale_(scale), max_records_(static_cast<int64_t>(text.size() / 2)) {}
   TetMesh parse(MshReadStats* stats);
 
  private:
@@ -87,6 +88,7 @@ class MshParser {
 
   TextCursor cur_;
   double scale_;
+  int64_t max_records_;  // each record holds a number and a separator: bounds counts that size allocations
   bool have_format_ = false, have_nodes_ = false, have_elements_ = false;
   std::map<std::pair<int, int>, std::string> physical_names_;      // (dim, physical tag) -> name
   std::unordered_map<int, std::vector<int>> entity_physicals_[4];  // per dim: entity tag -> physical tags
@@ -103,6 +105,7 @@ class MshParser {
 int64_t MshParser::count(std::string_view what) {
   const int64_t n = cur_.integer(what);
   if (n < 0) cur_.fail(std::string(what) + " >= 0", std::to_string(n));
+  if (n > max_records_) cur_.fail(std::string(what) + " that fits in the file's size", std::to_string(n));
   return n;
 }
 

@@ -198,7 +198,7 @@ void expect_shape(const TetMesh& m, const MeshGenerateSpec& spec, const Expected
 // The criterion is not enforced everywhere on the final mesh: Mesh_3 does not refine inside the
 // protecting balls of sharp edges, and sliver perturbation and exudation move vertices and reconnect
 // tets without re-checking sizes. On the blocks tried (700 to 44,000 tets) 0.4 - 1.9 % of tets broke
-// it, by at most 41 %. So: 97 % of tets meet it exactly (tolerance: round-off), and all edges stay below
+// it, by at most 26 %. So: 97 % of tets meet it exactly (tolerance: round-off), and all edges stay below
 // 1.5 x 2h. (h at the centroid would be the wrong reference: with grading 0.5 it differs from h at the
 // circumcentre by up to half the circumradius.)
 void expect_sizes(const TetMesh& m, const MeshGenerateSpec& spec) {

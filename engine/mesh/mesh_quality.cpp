@@ -7,23 +7,10 @@
 #include <limits>
 #include <numbers>
 
+#include "engine/core/vec3.hpp"
+
 namespace rift {
 namespace {
-
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 

@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
+#include "engine/core/vec3.hpp"
 #include "engine/mesh/text_cursor.hpp"
 
 namespace rift {
@@ -53,18 +54,6 @@ class NodeTagMap {
   std::vector<int32_t> dense_;
   std::unordered_map<int64_t, int32_t> sparse_;
 };
-
-using Vec3 = std::array<double, 3>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 
 class MshParser {
  public:

@@ -15,6 +15,7 @@
 #include <map>
 
 #include "engine/core/error.hpp"
+#include "engine/core/vec3.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/mesh_quality.hpp"
 #include "engine/mesh/msh_reader.hpp"
@@ -23,18 +24,7 @@
 namespace rift {
 namespace {
 
-using Vec3 = std::array<double, 3>;
 constexpr double kRel = 1e-9;
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) {
-  return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-}
 
 Vec3 centroid(const TetMesh& m, const std::array<int32_t, 4>& t) {
   Vec3 c{0, 0, 0};

@@ -1,0 +1,24 @@
+#pragma once
+// Small 3-vector helpers for set-up and geometry code (meshes, quality, tests). Hot kernels keep their
+// own explicit arithmetic over spans.
+#include <array>
+#include <cmath>
+
+namespace rift {
+
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
+
+}  // namespace rift

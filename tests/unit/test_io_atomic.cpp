@@ -12,12 +12,7 @@
 namespace rift {
 namespace {
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 size_t file_count(const std::filesystem::path& dir) {
   size_t n = 0;

@@ -89,14 +89,7 @@ void expect_same(const Store& a, const Store& b) {
   }
 }
 
-std::string error_of(auto&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test::error_of;
 
 TEST(Checkpoint, StoreRoundTripsBitForBit) {
   test::TempDir dir;

@@ -166,14 +166,7 @@ TEST(Hdf5File, StringsGroupsAndListings) {
   EXPECT_TRUE(h5.exists("/"));
 }
 
-std::string error_of(auto&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test::error_of;
 
 TEST(Hdf5File, FailuresNameFileAndObject) {
   test::TempDir dir;

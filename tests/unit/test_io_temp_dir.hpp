@@ -1,11 +1,16 @@
 #pragma once
-// A fresh, empty directory per test (ctest runs tests of one executable as parallel processes, so the
-// name carries the test name and the pid), removed again when the test ends.
+// Shared helpers of the I/O tests. TempDir: a fresh, empty directory per test (ctest runs tests of one
+// executable as parallel processes, so the name carries the test name and the pid), removed again when the
+// test ends.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+
+#include "engine/core/error.hpp"
 
 namespace rift::test {
 
@@ -28,5 +33,23 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// The whole file as bytes.
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The message of the rift::Error that call() throws, or "no error".
+inline std::string error_of(auto&& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 }  // namespace rift::test

@@ -18,12 +18,7 @@
 namespace rift {
 namespace {
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 ino_t inode(const std::filesystem::path& path) {
   struct stat st {};

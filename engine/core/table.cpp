@@ -40,6 +40,13 @@ const char* element_type_name(ElementType type) {
   return "?";
 }
 
+std::optional<ElementType> element_type_from_name(std::string_view name) {
+  for (ElementType t : {ElementType::f64, ElementType::f32, ElementType::i64, ElementType::i32,
+                        ElementType::u32, ElementType::u8})
+    if (name == element_type_name(t)) return t;
+  return std::nullopt;
+}
+
 void Column::move_row(size_t from, size_t to) {
   const size_t row_bytes = components_ * element_size(type_);
   std::memcpy(buffer_.data() + to * row_bytes, buffer_.data() + from * row_bytes, row_bytes);

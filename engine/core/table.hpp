@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -22,6 +23,8 @@ enum class ElementType : uint8_t { f64, f32, i64, i32, u32, u8 };
 
 size_t element_size(ElementType type);
 const char* element_type_name(ElementType type);
+// Inverse of element_type_name ("f64" ...); nullopt for anything else.
+std::optional<ElementType> element_type_from_name(std::string_view name);
 
 template <class T>
 constexpr ElementType element_type_of();

@@ -499,13 +499,6 @@ std::vector<std::string> H5File::attr_names(std::string_view object) const {
   return names;
 }
 
-std::optional<ElementType> element_type_from_name(std::string_view name) {
-  for (ElementType t : {ElementType::f64, ElementType::f32, ElementType::i64, ElementType::i32,
-                        ElementType::u32, ElementType::u8})
-    if (name == element_type_name(t)) return t;
-  return std::nullopt;
-}
-
 bool is_hdf5_file(const std::filesystem::path& path) {
   quiet();
   std::error_code ec;

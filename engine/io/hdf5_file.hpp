@@ -89,10 +89,6 @@ class H5File {
   int64_t id_ = -1;  // hid_t (int64_t since HDF5 1.10; checked in the .cpp)
 };
 
-// Inverse of element_type_name ("f64" ...); nullopt for anything else. (Would sit best next to
-// element_type_name in engine/core/table.hpp; kept here because io does not edit core.)
-std::optional<ElementType> element_type_from_name(std::string_view name);
-
 // True when `path` exists and HDF5 recognises its signature (does not prove the file is intact).
 bool is_hdf5_file(const std::filesystem::path& path);
 

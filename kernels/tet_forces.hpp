@@ -7,6 +7,21 @@
 // The elastic part is the Cauchy stress of W, so forces are exactly -dE/dx for eta = 0.
 // Nodal forces: f_a = -V0 P grad_X N_a with P = J sigma F^-T (= -V sigma grad_x N_a), f_0 = -(f_1+f_2+f_3).
 //
+// Initial (in-situ) stress, optional, per material: sigma = sigma_law(F, D) + sigma0. sigma0 is fixed in
+// space: it is NOT rotated with the body (a rigidly turned prestressed tet keeps sigma0 in the global frame;
+// its forces still sum to zero and have no moment, sigma0 being symmetric). The forces are -V sigma grad_x
+// N_a as above, so an undeformed tet carries -V0 sigma0 grad_X N_a, balanced inside a uniformly prestressed
+// body and at its boundary by tractions sigma0 n. The energy output adds the prestress energy
+//   V0 sigma0 : (F - I),
+// the potential of -V0 sigma0 grad_X N_a, i.e. of the prestress forces to first order only: they are
+// -V0 sigma0 cof(F) grad_X N_a, so the two differ by O(|sigma0| |F - I|) in force and O(|sigma0| |F - I|^2
+// V0) in energy. (A hydrostatic sigma0 = -p0 I has the exact potential -p0 (V - V0) = -p0 V0 (J - 1), which
+// agrees with the booked -p0 V0 tr(F - I) to that order; a deviatoric sigma0 fixed in space has no
+// potential at all: it does work around closed paths that rotate the body.)
+//
+// Viscous power, optional: P = eta (D:D) V >= 0 (V current volume) [W], the rate of work of the damping
+// stress eta D, for the engine to integrate as damping dissipation.
+//
 // Two implementations of the same law: tet_forces_scalar (one tet at a time, the reference) and
 // tet_forces (4 tets per AVX2 register). Both instantiate one templated law body (tet_law.hpp), so
 // they differ only in how data is gathered and scattered; tests compare them on random tets.
@@ -38,7 +53,11 @@ struct TetForceArgs {
   std::span<const TetMaterial> materials;
   std::span<double> corner_force;   // out, 12 per tet: internal force on corners 0..3 (x y z each)
   std::span<double> stress;         // out, 6 per tet: Cauchy xx yy zz xy yz zx; may be empty (skipped)
-  std::span<double> strain_energy;  // out, 1 per tet: W(F) V0, elastic only; may be empty (skipped)
+  std::span<double> strain_energy;  // out, 1 per tet: W(F) V0 (+ prestress energy); may be empty (skipped)
+  // Trailing optional members (default empty, so positional initialisers above stay valid):
+  std::span<double> viscous_power = {};         // out, 1 per tet: eta (D:D) V [W]; empty = skipped
+  std::span<const double> initial_stress = {};  // 6 per material: sigma0, Cauchy xx yy zz xy yz zx [Pa];
+                                                // empty = none
 };
 
 // Tets whose current J = det F is not > 0 (inverted, flat or NaN). Their outputs are written as 0.

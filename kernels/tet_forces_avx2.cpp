@@ -19,8 +19,10 @@ struct Group {
   int count;                     // real lanes
   V4 ex[3][3], ev[3][3], dm[9];  // position and velocity edges p[c+1] - p[0], Dm^-1
   tet_law::Constants<V4> c;
+  V4 sigma0[6];  // initial stress of each lane's material, when there is one
 };
 
+template <bool kPrestress>
 void load_group(const TetForceArgs& a, size_t first, int count, Group& g) {
   g.count = count;
   for (int l = 0; l < 4; ++l) g.tet[l] = first + static_cast<size_t>(l < count ? l : count - 1);
@@ -44,11 +46,18 @@ void load_group(const TetForceArgs& a, size_t first, int count, Group& g) {
   for (int k = 0; k < 8; k += 2) simd::load_pair(a.dm_inv.data(), 9, k, g.tet, g.dm[k], g.dm[k + 1]);
   g.dm[8] = simd::gather1(a.dm_inv.data() + 8, 9, g.tet);
   g.c.volume0 = simd::gather1(a.volume0.data(), 1, g.tet);
+  size_t mat[4];
   const TetMaterial* m[4];
-  for (int l = 0; l < 4; ++l) m[l] = &a.materials[static_cast<size_t>(a.material[g.tet[l]])];
+  for (int l = 0; l < 4; ++l) {
+    mat[l] = static_cast<size_t>(a.material[g.tet[l]]);
+    m[l] = &a.materials[mat[l]];
+  }
   g.c.lambda = _mm256_setr_pd(m[0]->lambda, m[1]->lambda, m[2]->lambda, m[3]->lambda);
   g.c.mu = _mm256_setr_pd(m[0]->mu, m[1]->mu, m[2]->mu, m[3]->mu);
   g.c.eta = _mm256_setr_pd(m[0]->eta, m[1]->eta, m[2]->eta, m[3]->eta);
+  if (kPrestress)
+    for (int k = 0; k < 6; k += 2)
+      simd::load_pair(a.initial_stress.data(), 6, k, mat, g.sigma0[k], g.sigma0[k + 1]);
 }
 
 // j - ln(1 + j) per lane: the series everywhere, then the few lanes with |j| >= small_j redone exactly as
@@ -78,6 +87,7 @@ void store_group(const TetForceArgs& a, const Group& g, V4 ok, tet_law::Response
     simd::store_pair(r.stress[4], r.stress[5], a.stress.data() + 6 * t + 4, 6, g.count);
   }
   if (!a.strain_energy.empty()) simd::store1(simd::keep(ok, r.energy), a.strain_energy.data() + t, g.count);
+  if (!a.viscous_power.empty()) simd::store1(simd::keep(ok, r.power), a.viscous_power.data() + t, g.count);
 }
 
 // Records tets of this group whose J is not > 0 although their reference volume is.
@@ -90,7 +100,13 @@ void count_inverted(const Group& g, V4 J, TetForceStatus& status) {
   status.inverted += static_cast<size_t>(__builtin_popcount(bits));
 }
 
-void process_group(const TetForceArgs& a, Group& g, bool want_energy, TetForceStatus& status) {
+// kPrestress: an initial stress is given; without, it is compile-time absent.
+template <bool kPrestress>
+void process_group(const TetForceArgs& a, Group& g, TetForceStatus& status) {
+  tet_law::Wanted<V4> want;
+  want.energy = !a.strain_energy.empty();
+  want.power = !a.viscous_power.empty();
+  if (kPrestress) want.sigma0 = g.sigma0;
   tet_law::Kinematics<V4> k;
   tet_law::kinematics(g.ex, g.dm, k);
   count_inverted(g, k.J, status);
@@ -101,21 +117,25 @@ void process_group(const TetForceArgs& a, Group& g, bool want_energy, TetForceSt
   k.J = simd::select(ok, k.J, _mm256_set1_pd(1.0));
   k.j = simd::keep(ok, k.j);
   tet_law::Response<V4> r;
-  tet_law::response(k, g.ev, g.dm, g.c, want_energy ? excess_log(k.j) : zero, want_energy, r);
+  tet_law::response(k, g.ev, g.dm, g.c, want.energy ? excess_log(k.j) : zero, want, r);
   store_group(a, g, ok, r);
+}
+
+template <bool kPrestress>
+TetForceStatus forces(const TetForceArgs& args, size_t begin, size_t end) {
+  TetForceStatus status;
+  Group g;
+  for (size_t t = begin; t < end; t += 4) {
+    load_group<kPrestress>(args, t, static_cast<int>(end - t < 4 ? end - t : 4), g);
+    process_group<kPrestress>(args, g, status);
+  }
+  return status;
 }
 
 }  // namespace
 
 TetForceStatus tet_forces(const TetForceArgs& args, size_t begin, size_t end) {
-  TetForceStatus status;
-  const bool want_energy = !args.strain_energy.empty();
-  Group g;
-  for (size_t t = begin; t < end; t += 4) {
-    load_group(args, t, static_cast<int>(end - t < 4 ? end - t : 4), g);
-    process_group(args, g, want_energy, status);
-  }
-  return status;
+  return args.initial_stress.empty() ? forces<false>(args, begin, end) : forces<true>(args, begin, end);
 }
 
 bool tet_forces_vectorised() {

@@ -11,6 +11,7 @@ void write_zeros(const TetForceArgs& args, size_t t) {
   if (!args.stress.empty())
     for (int n = 0; n < 6; ++n) args.stress[6 * t + n] = 0.0;
   if (!args.strain_energy.empty()) args.strain_energy[t] = 0.0;
+  if (!args.viscous_power.empty()) args.viscous_power[t] = 0.0;
 }
 
 void write_response(const TetForceArgs& args, size_t t, const tet_law::Response<double>& r) {
@@ -19,13 +20,16 @@ void write_response(const TetForceArgs& args, size_t t, const tet_law::Response<
   if (!args.stress.empty())
     for (int n = 0; n < 6; ++n) args.stress[6 * t + n] = r.stress[n];
   if (!args.strain_energy.empty()) args.strain_energy[t] = r.energy;
+  if (!args.viscous_power.empty()) args.viscous_power[t] = r.power;
 }
 
-}  // namespace
-
-TetForceStatus tet_forces_scalar(const TetForceArgs& args, size_t begin, size_t end) {
+// kPrestress: an initial stress is given; without, it is compile-time absent.
+template <bool kPrestress>
+TetForceStatus forces(const TetForceArgs& args, size_t begin, size_t end) {
   TetForceStatus status;
-  const bool want_energy = !args.strain_energy.empty();
+  tet_law::Wanted<double> want;
+  want.energy = !args.strain_energy.empty();
+  want.power = !args.viscous_power.empty();
   for (size_t t = begin; t < end; ++t) {
     double x[4][3], v[4][3], dm[9];
     for (int a = 0; a < 4; ++a) {
@@ -47,13 +51,21 @@ TetForceStatus tet_forces_scalar(const TetForceArgs& args, size_t begin, size_t 
       write_zeros(args, t);
       continue;
     }
-    const TetMaterial& m = args.materials[static_cast<size_t>(args.material[t])];
+    const size_t mat = static_cast<size_t>(args.material[t]);
+    const TetMaterial& m = args.materials[mat];
     const tet_law::Constants<double> c{m.lambda, m.mu, m.eta, volume0};
+    if (kPrestress) want.sigma0 = &args.initial_stress[6 * mat];
     tet_law::Response<double> r;
-    tet_law::response(k, ev, dm, c, want_energy ? tet_law::excess_log(k.j) : 0.0, want_energy, r);
+    tet_law::response(k, ev, dm, c, want.energy ? tet_law::excess_log(k.j) : 0.0, want, r);
     write_response(args, t, r);
   }
   return status;
+}
+
+}  // namespace
+
+TetForceStatus tet_forces_scalar(const TetForceArgs& args, size_t begin, size_t end) {
+  return args.initial_stress.empty() ? forces<false>(args, begin, end) : forces<true>(args, begin, end);
 }
 
 #ifndef __AVX2__

@@ -34,8 +34,19 @@ struct Constants {
 template <class T>
 struct Response {
   T force[4][3];  // corner forces
-  T stress[6];    // Cauchy xx yy zz xy yz zx
-  T energy;       // W V0
+  T stress[6];    // Cauchy xx yy zz xy yz zx, initial stress included
+  T energy;       // W V0 (+ the prestress energy), when wanted
+  T power;        // viscous power eta (D:D) V, when wanted
+};
+
+// The optional parts of the response: what the caller will store, and the initial stress if any. Outputs
+// are runtime flags evaluated after the forces, so asking for them cannot change a bit of the forces (one
+// compiled law, whatever is stored). Callers make sigma0 a compile-time null when there is no initial stress,
+// so that path compiles to the law without it.
+template <class T>
+struct Wanted {
+  bool energy = false, power = false;
+  const T* sigma0 = nullptr;  // 6 components (Voigt order as the stress), or none
 };
 
 // Edge vectors e[c] = p[c+1] - p[0] of the corner positions or velocities p.
@@ -103,9 +114,11 @@ inline double excess_log(double j) {
 }
 
 // Cauchy stress sigma = (mu/J)(B - I) + (lambda/2)(J - 1/J) I + eta D, with B - I = H + H^T + H H^T,
-// J - 1/J = j (2 + j) / J and D = sym(F-dot F^-1) = sym(F-dot cof^T) / J.
+// J - 1/J = j (2 + j) / J and D = sym(F-dot F^-1) = sym(F-dot cof^T) / J. two_d receives 2 J D (Voigt
+// order) for the viscous power.
 template <class T>
-inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3], const Constants<T>& c, T s[6]) {
+inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3], const Constants<T>& c, T s[6],
+                          T two_d[6]) {
   static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
   const T inv_j = splat<T>(1.0) / k.J;
   const T shear = c.mu * inv_j;
@@ -118,8 +131,8 @@ inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3], const Cons
     const int a = row[n], b = col[n];
     const T bm =
         k.H[a][b] + k.H[b][a] + (k.H[a][0] * k.H[b][0] + k.H[a][1] * k.H[b][1] + k.H[a][2] * k.H[b][2]);
-    const T two_d = l(a, b) + l(b, a);  // 2 J D_ab
-    s[n] = shear * bm + half_visc * two_d;
+    two_d[n] = l(a, b) + l(b, a);  // 2 J D_ab
+    s[n] = shear * bm + half_visc * two_d[n];
     if (a == b) s[n] = s[n] + volumetric;
   }
 }
@@ -155,16 +168,39 @@ inline T strain_energy(const Kinematics<T>& k, T g, const Constants<T>& c) {
   return w * c.volume0;
 }
 
+// V0 sigma0 : H = V0 sigma0 : (F - I), the first-order potential of the initial stress (tet_forces.hpp).
+template <class T>
+inline T prestress_energy(const Kinematics<T>& k, const T s0[6], T volume0) {
+  const T e = s0[0] * k.H[0][0] + s0[1] * k.H[1][1] + s0[2] * k.H[2][2] + s0[3] * (k.H[0][1] + k.H[1][0]) +
+              s0[4] * (k.H[1][2] + k.H[2][1]) + s0[5] * (k.H[2][0] + k.H[0][2]);
+  return e * volume0;
+}
+
+// eta (D:D) V with D = two_d / (2 J) and V = J V0: eta V0 (sum of two_d^2, off-diagonal twice) / (4 J).
+// A sum of squares, so >= 0 whatever the rounding.
+template <class T>
+inline T viscous_power(const T two_d[6], T J, const Constants<T>& c) {
+  const T diagonal = two_d[0] * two_d[0] + two_d[1] * two_d[1] + two_d[2] * two_d[2];
+  const T off = two_d[3] * two_d[3] + two_d[4] * two_d[4] + two_d[5] * two_d[5];
+  return splat<T>(0.25) * c.eta * c.volume0 * (diagonal + splat<T>(2.0) * off) / J;
+}
+
 // Everything after the kinematics (ev: velocity edges); the caller has checked J > 0 (lanes where it is not
-// are discarded). g = j - ln J for the energy (ignored when want_energy is false).
+// are discarded). g = j - ln J for the energy (ignored unless want.energy).
 template <class T>
 inline void response(const Kinematics<T>& k, const T ev[3][3], const T dm[9], const Constants<T>& c, T g,
-                     bool want_energy, Response<T>& r) {
-  T Fdot[3][3];
+                     const Wanted<T>& want, Response<T>& r) {
+  T Fdot[3][3], two_d[6];
   edge_gradient(ev, dm, Fdot);
-  cauchy_stress(k, Fdot, c, r.stress);
+  cauchy_stress(k, Fdot, c, r.stress, two_d);
+  if (want.sigma0)
+    for (int n = 0; n < 6; ++n) r.stress[n] = r.stress[n] + want.sigma0[n];
   corner_forces(k, r.stress, dm, c.volume0, r.force);
-  if (want_energy) r.energy = strain_energy(k, g, c);
+  if (want.energy) {
+    r.energy = strain_energy(k, g, c);
+    if (want.sigma0) r.energy = r.energy + prestress_energy(k, want.sigma0, c.volume0);
+  }
+  if (want.power) r.power = viscous_power(two_d, k.J, c);
 }
 
 }  // namespace rift::kernels::tet_law

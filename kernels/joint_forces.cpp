@@ -12,7 +12,7 @@ namespace {
 
 // The mid-surface frame of one joint and its node-pair jumps.
 struct JointGeometry {
-  double d[3][3];  // d_i = x_i - x_{i+3}
+  double d[3][3];  // d_i = x_i - x_{i+3} (+ the joint's initial offset, when one is given)
   double n[3];     // unit normal, from side B into side A
   double area;     // A
   double h;        // shortest mid-surface edge
@@ -28,7 +28,9 @@ inline double dot(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-[[gnu::always_inline]] inline JointGeometry geometry(std::span<const double> x, const int32_t* nodes) {
+// offset: the joint's initial offset (3 doubles) or nullptr.
+[[gnu::always_inline]] inline JointGeometry geometry(std::span<const double> x, const int32_t* nodes,
+                                                     const double* offset) {
   JointGeometry g;
   double xm[3][3];
   for (int i = 0; i < 3; ++i) {
@@ -39,6 +41,9 @@ inline double dot(const double a[3], const double b[3]) {
       g.d[i][k] = a[k] - b[k];
     }
   }
+  if (offset)
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) g.d[i][k] = g.d[i][k] + offset[k];
   double e1[3], e2[3], e3[3], c[3];
   for (int k = 0; k < 3; ++k) {
     e1[k] = xm[1][k] - xm[0][k];
@@ -71,11 +76,12 @@ void write_zero_force(const JointArgs& a, size_t j) {
 }
 
 // A broken joint: no force, but the aperture and slip stay visible (the fluid model needs the aperture).
+// They are the geometric jump: the initial offset belongs to the law, which no longer applies.
 void broken_joint(const JointArgs& a, size_t j) {
   write_zero_force(a, j);
   if (!a.damage.empty()) a.damage[j] = 1.0;
   if (a.opening.empty() && a.slip.empty()) return;
-  const JointGeometry g = geometry(a.x, &a.joint_nodes[6 * j]);
+  const JointGeometry g = geometry(a.x, &a.joint_nodes[6 * j], nullptr);
   double mean_o = 0.0, mean_s = 0.0;
   if (g.ok) {
     const JointRule& rule = *a.rule;
@@ -106,7 +112,8 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
       broken_joint(a, j);
       continue;
     }
-    const JointGeometry g = geometry(a.x, &a.joint_nodes[6 * j]);
+    const JointGeometry g =
+        geometry(a.x, &a.joint_nodes[6 * j], a.initial_offset.empty() ? nullptr : &a.initial_offset[3 * j]);
     if (!g.ok) {
       ++status.degenerate;
       write_zero_force(a, j);
@@ -180,7 +187,7 @@ double joint_stable_step(std::span<const double> x, std::span<const int32_t> joi
   for (size_t j = begin; j < end; ++j) {
     if (!broken.empty() && broken[j] != 0) continue;
     const int32_t* nodes = &joint_nodes[6 * j];
-    const JointGeometry g = geometry(x, nodes);
+    const JointGeometry g = geometry(x, nodes, nullptr);
     if (!g.ok) continue;
     double m_min = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 6; ++i) m_min = std::min(m_min, node_mass[static_cast<size_t>(nodes[i])]);

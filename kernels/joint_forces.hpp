@@ -18,6 +18,13 @@
 // variation (dn/dx, dA/dx, dh/dx) are not included, as in Y: the forces are the tractions lumped, not the
 // exact gradient of the stored energy when the mid-surface stretches or turns under load.
 //
+// Initial (in-situ) offset, optional: a vector o0 per joint (global frame) added to every d_i before the
+// law, d_i = x_i - x_{i+3} + o0. A joint whose nodes coincide then carries the traction law(o0): with o0
+// from joint_initial_offset (joint_initial_state.hpp) that is the in-situ traction sigma0 n, so a joint in
+// in-situ compression needs the full f_t of further tension to break, and an in-situ shear starts pre-peak.
+// opening, slip and stored_energy of intact joints include o0 (stored_energy is not 0 at t = 0: book
+// changes); broken joints report the geometric opening and slip, without o0.
+//
 // Breakage. A point has failed when its D_max reaches 1. When at least rule.fail_count points have failed
 // (3 of 3, 5 of 7), the joint breaks: broken[j] is set to 1 (tensile) or 2 (shear), the joint writes zero
 // force and stored energy from that call on, and an event is appended to args.breaks. The mode compares the
@@ -62,6 +69,8 @@ struct JointArgs {
   // breaks is empty.
   std::span<JointBreak> breaks;
   std::atomic<size_t>* break_count = nullptr;
+  // Optional input, 3 per joint: the initial offset o0 [m] (see above); empty = none.
+  std::span<const double> initial_offset = {};
 };
 
 struct JointStatus {

@@ -42,7 +42,7 @@ inline int lanes(V4 mask) {
 }
 
 struct GeometryV {
-  V4 d[3][3];  // d_i = x_i - x_{i+3}
+  V4 d[3][3];  // d_i = x_i - x_{i+3} (+ the initial offset)
   V4 n[3], area, h, ok;
 };
 
@@ -62,6 +62,12 @@ void load_geometry(const JointArgs& a, const size_t joint[4], GeometryV& g) {
       xm[i][k] = 0.5 * (xa[k] + xb[k]);
       g.d[i][k] = xa[k] - xb[k];
     }
+  }
+  if (!a.initial_offset.empty()) {  // 3 per joint: a node-like record, so load_xyz gathers it
+    V4 offset[3];
+    simd::load_xyz(a.initial_offset.data(), joint, offset);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) g.d[i][k] = g.d[i][k] + offset[k];
   }
   V4 e1[3], e2[3], e3[3];
   for (int k = 0; k < 3; ++k) {

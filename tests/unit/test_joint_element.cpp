@@ -316,129 +316,179 @@ TEST(JointForces, StableStepBoundsHighestFrequency) {
 // ---------------------------------------------------------------------------------------------------------
 // 5. The AVX2 path against the scalar reference
 
-// 4000 joints in every state of the law: random triangles (edges ~h, any orientation) with per-pair jumps
-// from deep compression to past failure, mixed mode; histories 0, partial or failed at random points; some
-// joints broken beforehand, some degenerate; 3 materials (one with residual friction, one whose
-// energy_exact shear length is too short under confinement); both softening rules and both rules; node
-// ids shuffled; ranges split into pieces of 1..9 joints so every tail length occurs. Both paths evaluate the
-// same expressions in the same order; they may differ only by the compiler's fused multiply-adds, a few
-// ulps per operation over ~500 operations: 1e-12 of each joint's largest force (or of the value) is fair.
-// Every discrete outcome (histories, failures, breaks, modes, status counts) must be identical.
-TEST(JointForces, VectorMatchesScalarReference) {
-  constexpr size_t kJoints = 4000;
-  RecordProperty("vectorised", joint_forces_vectorised() ? "yes" : "no");
-  for (int points : {3, 7})
-    for (Softening rule : {Softening::energy_exact, Softening::y_compatible}) {
-      std::mt19937_64 rng(99 + points);
-      std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
-      std::vector<int32_t> perm(6 * kJoints);
-      for (size_t n = 0; n < perm.size(); ++n) perm[n] = static_cast<int32_t>(n);
-      std::shuffle(perm.begin(), perm.end(), rng);
-      std::vector<double> x(3 * perm.size());
-      std::vector<int32_t> nodes(6 * kJoints), material(kJoints);
-      std::vector<double> d_max(static_cast<size_t>(points) * kJoints, 0.0);
-      std::vector<uint8_t> broken(kJoints, 0);
-      const double of = kOp + exact_length(kFt, kOp, kGI);
-      for (size_t j = 0; j < kJoints; ++j) {
-        material[j] = static_cast<int32_t>(j % 3);
-        const double scale = std::pow(10.0, 2 * u(rng)) * of;  // jumps from 1e-2 to 1e2 of failure
-        const double bias = u(rng) > -0.3 ? 0.5 : -0.5;        // mostly opening, some closing
-        for (int i = 0; i < 3; ++i) {
-          const size_t na = static_cast<size_t>(perm[6 * j + i]),
-                       nb = static_cast<size_t>(perm[6 * j + i + 3]);
-          nodes[6 * j + i] = static_cast<int32_t>(na);
-          nodes[6 * j + i + 3] = static_cast<int32_t>(nb);
-          const double corner[3][3] = {{0, 0, 0}, {kH, 0, 0}, {0, kH, 0}};
-          for (int c = 0; c < 3; ++c) {
-            const double ref = 0.1 * j * (c == 0) + corner[i][c] + 0.3 * kH * u(rng);
-            const double jump = scale * (0.4 * u(rng) + (c == 2 ? bias : 0.0));
-            x[3 * nb + c] = ref - 0.5 * jump;
-            x[3 * na + c] = ref + 0.5 * jump;
-          }
-        }
-        if (j % 97 == 5) {  // degenerate: all six nodes at one point
-          for (int i = 0; i < 6; ++i)
-            for (int c = 0; c < 3; ++c) x[3 * static_cast<size_t>(nodes[6 * j + i]) + c] = 0.1 * j;
-        }
-        if (j % 89 == 7) broken[j] = 1 + (j % 2);
-        for (int q = 0; q < points; ++q) {
-          const double r = unit(rng);
-          d_max[static_cast<size_t>(points) * j + q] = r < 0.6 ? 0.0 : r < 0.9 ? unit(rng) : 1.0;
-        }
-      }
-      JointMaterial weak = limestone(), rubbly = limestone();
-      weak.residual_friction = 0.5;
-      rubbly.G_II = 8.0;  // short energy_exact shear length once confined
-      const std::vector<JointMaterial> materials{limestone(), weak, rubbly};
+constexpr size_t kRandomJoints = 4000;
 
-      struct Run {
-        std::vector<double> d_max, force, opening, slip, damage, energy;
-        std::vector<uint8_t> broken;
-        std::vector<JointBreak> breaks = std::vector<JointBreak>(kJoints);
-        std::atomic<size_t> count{0};
-        JointStatus status;
-      };
-      auto run = [&](Kernel kernel, Run& r, bool split) {
-        r.d_max = d_max;
-        r.broken = broken;
-        r.force.assign(18 * kJoints, -1.0);
-        r.opening.assign(kJoints, -1.0);
-        r.slip.assign(kJoints, -1.0);
-        r.damage.assign(kJoints, -1.0);
-        r.energy.assign(kJoints, -1.0);
-        const JointArgs args{x,      nodes,    material, materials, &joint_rule(points),
-                             rule,   r.d_max,  r.broken, r.force,   r.opening,
-                             r.slip, r.damage, r.energy, r.breaks,  &r.count};
-        std::mt19937_64 pieces(5);
-        for (size_t begin = 0; begin < kJoints;) {
-          const size_t end = split ? std::min(kJoints, begin + 1 + pieces() % 9) : kJoints;
-          r.status += kernel(args, begin, end);
-          begin = end;
-        }
-        std::sort(r.breaks.begin(), r.breaks.begin() + static_cast<long>(r.count.load()),
-                  [](const JointBreak& a, const JointBreak& b) { return a.joint < b.joint; });
-      };
-      Run ref, vec;
-      run(&joint_forces_scalar, ref, false);
-      run(&joint_forces, vec, true);
-      EXPECT_GT(ref.status.broke, 50u);
-      EXPECT_GT(ref.status.degenerate, 10u);
-      if (rule == Softening::energy_exact) {
-        EXPECT_GT(ref.status.short_softening, 10u);
+// kRandomJoints joints in every state of the law: random triangles (edges ~h, any orientation) with per-pair
+// jumps from deep compression to past failure, mixed mode; histories 0, partial or failed at random points;
+// some joints broken beforehand, some degenerate; 3 materials (one with residual friction, one whose
+// energy_exact shear length is too short under confinement); node ids shuffled. offsets: initial offsets
+// for every joint, random directions, sizes as the jumps' (many joints start compressed or pre-loaded in
+// shear, some past failure); used in a second pass.
+struct RandomJoints {
+  int points;
+  std::vector<double> x, d_max, offsets;
+  std::vector<int32_t> nodes, material;
+  std::vector<uint8_t> broken;
+  std::vector<JointMaterial> materials;
+};
+
+RandomJoints random_joints(int points) {
+  constexpr size_t J = kRandomJoints;
+  RandomJoints r{points,
+                 std::vector<double>(18 * J),
+                 std::vector<double>(static_cast<size_t>(points) * J, 0.0),
+                 std::vector<double>(3 * J),
+                 std::vector<int32_t>(6 * J),
+                 std::vector<int32_t>(J),
+                 std::vector<uint8_t>(J, 0),
+                 {}};
+  std::mt19937_64 rng(99 + points);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+  std::vector<int32_t> perm(6 * J);
+  for (size_t n = 0; n < perm.size(); ++n) perm[n] = static_cast<int32_t>(n);
+  std::shuffle(perm.begin(), perm.end(), rng);
+  const double of = kOp + exact_length(kFt, kOp, kGI);
+  for (size_t j = 0; j < J; ++j) {
+    r.material[j] = static_cast<int32_t>(j % 3);
+    const double scale = std::pow(10.0, 2 * u(rng)) * of;  // jumps from 1e-2 to 1e2 of failure
+    const double bias = u(rng) > -0.3 ? 0.5 : -0.5;        // mostly opening, some closing
+    for (int i = 0; i < 3; ++i) {
+      const size_t na = static_cast<size_t>(perm[6 * j + i]), nb = static_cast<size_t>(perm[6 * j + i + 3]);
+      r.nodes[6 * j + i] = static_cast<int32_t>(na);
+      r.nodes[6 * j + i + 3] = static_cast<int32_t>(nb);
+      const double corner[3][3] = {{0, 0, 0}, {kH, 0, 0}, {0, kH, 0}};
+      for (int c = 0; c < 3; ++c) {
+        const double ref = 0.1 * j * (c == 0) + corner[i][c] + 0.3 * kH * u(rng);
+        const double jump = scale * (0.4 * u(rng) + (c == 2 ? bias : 0.0));
+        r.x[3 * nb + c] = ref - 0.5 * jump;
+        r.x[3 * na + c] = ref + 0.5 * jump;
       }
-      EXPECT_EQ(vec.status.broke, ref.status.broke);
-      EXPECT_EQ(vec.status.degenerate, ref.status.degenerate);
-      EXPECT_EQ(vec.status.short_softening, ref.status.short_softening);
-      EXPECT_EQ(vec.status.breaks_dropped, 0u);
-      EXPECT_EQ(vec.broken, ref.broken);
-      ASSERT_EQ(vec.count.load(), ref.count.load());
-      for (size_t e = 0; e < ref.count.load(); ++e) {
-        EXPECT_EQ(vec.breaks[e].joint, ref.breaks[e].joint);
-        EXPECT_EQ(vec.breaks[e].mode, ref.breaks[e].mode);
-      }
-      double worst = 0.0;
-      auto close = [&](double a, double b, double scale) {
-        if (a == b) return;
-        worst = std::max(worst, std::fabs(a - b) / scale);
-      };
-      for (size_t j = 0; j < kJoints; ++j) {
-        double fscale = 1e-300;
-        for (int c = 0; c < 18; ++c) fscale = std::max(fscale, std::fabs(ref.force[18 * j + c]));
-        for (int c = 0; c < 18; ++c) close(vec.force[18 * j + c], ref.force[18 * j + c], fscale);
-        close(vec.opening[j], ref.opening[j], std::fabs(ref.opening[j]) + 1e-300);
-        close(vec.slip[j], ref.slip[j], ref.slip[j] + 1e-300);
-        close(vec.damage[j], ref.damage[j], 1.0);
-        close(vec.energy[j], ref.energy[j], ref.energy[j] + 1e-300);
-        for (int q = 0; q < points; ++q) {
-          const size_t i = static_cast<size_t>(points) * j + q;
-          close(vec.d_max[i], ref.d_max[i], 1.0);
-          EXPECT_EQ(vec.d_max[i] >= 1.0, ref.d_max[i] >= 1.0);
-          EXPECT_EQ(vec.d_max[i] == 0.0, ref.d_max[i] == 0.0);
-        }
-      }
-      EXPECT_LT(worst, 1e-12) << points << " points, rule " << static_cast<int>(rule);
-      record(points == 3 ? "worst_relative_difference_3" : "worst_relative_difference_7", worst);
     }
+    if (j % 97 == 5) {  // degenerate: all six nodes at one point
+      for (int i = 0; i < 6; ++i)
+        for (int c = 0; c < 3; ++c) r.x[3 * static_cast<size_t>(r.nodes[6 * j + i]) + c] = 0.1 * j;
+    }
+    if (j % 89 == 7) r.broken[j] = 1 + (j % 2);
+    for (int q = 0; q < points; ++q) {
+      const double d = unit(rng);
+      r.d_max[static_cast<size_t>(points) * j + q] = d < 0.6 ? 0.0 : d < 0.9 ? unit(rng) : 1.0;
+    }
+  }
+  std::mt19937_64 offset_rng(7);
+  for (size_t j = 0; j < J; ++j) {
+    const double scale = std::pow(10.0, 2 * u(offset_rng)) * of;
+    for (int c = 0; c < 3; ++c) r.offsets[3 * j + c] = 0.5 * scale * u(offset_rng);
+  }
+  JointMaterial weak = limestone(), rubbly = limestone();
+  weak.residual_friction = 0.5;
+  rubbly.G_II = 8.0;  // short energy_exact shear length once confined
+  r.materials = {limestone(), weak, rubbly};
+  return r;
+}
+
+// Everything one call over the random joints produces.
+struct Outcome {
+  std::vector<double> d_max, force, opening, slip, damage, energy;
+  std::vector<uint8_t> broken;
+  std::vector<JointBreak> breaks = std::vector<JointBreak>(kRandomJoints);
+  std::atomic<size_t> count{0};
+  JointStatus status;
+};
+
+// Runs kernel over all joints, in one range or split into pieces of 1..9 joints (every tail length).
+void run_random(const RandomJoints& in, Softening rule, bool offsets, Kernel kernel, bool split, Outcome& r) {
+  constexpr size_t J = kRandomJoints;
+  r.d_max = in.d_max;
+  r.broken = in.broken;
+  r.force.assign(18 * J, -1.0);
+  for (auto* out : {&r.opening, &r.slip, &r.damage, &r.energy}) out->assign(J, -1.0);
+  const JointArgs args{in.x,
+                       in.nodes,
+                       in.material,
+                       in.materials,
+                       &joint_rule(in.points),
+                       rule,
+                       r.d_max,
+                       r.broken,
+                       r.force,
+                       r.opening,
+                       r.slip,
+                       r.damage,
+                       r.energy,
+                       r.breaks,
+                       &r.count,
+                       offsets ? std::span<const double>(in.offsets) : std::span<const double>()};
+  std::mt19937_64 pieces(5);
+  for (size_t begin = 0; begin < J;) {
+    const size_t end = split ? std::min(J, begin + 1 + pieces() % 9) : J;
+    r.status += kernel(args, begin, end);
+    begin = end;
+  }
+  std::sort(r.breaks.begin(), r.breaks.begin() + static_cast<long>(r.count.load()),
+            [](const JointBreak& a, const JointBreak& b) { return a.joint < b.joint; });
+}
+
+// Every discrete outcome identical; returns the worst relative difference of the continuous ones.
+double compare(const Outcome& ref, const Outcome& vec, int points) {
+  EXPECT_EQ(vec.status.broke, ref.status.broke);
+  EXPECT_EQ(vec.status.degenerate, ref.status.degenerate);
+  EXPECT_EQ(vec.status.short_softening, ref.status.short_softening);
+  EXPECT_EQ(vec.status.breaks_dropped, 0u);
+  EXPECT_EQ(vec.broken, ref.broken);
+  EXPECT_EQ(vec.count.load(), ref.count.load());
+  for (size_t e = 0; e < std::min(ref.count.load(), vec.count.load()); ++e) {
+    EXPECT_EQ(vec.breaks[e].joint, ref.breaks[e].joint);
+    EXPECT_EQ(vec.breaks[e].mode, ref.breaks[e].mode);
+  }
+  double worst = 0.0;
+  auto close = [&](double a, double b, double scale) {
+    if (a != b) worst = std::max(worst, std::fabs(a - b) / scale);
+  };
+  for (size_t j = 0; j < kRandomJoints; ++j) {
+    double fscale = 1e-300;
+    for (int c = 0; c < 18; ++c) fscale = std::max(fscale, std::fabs(ref.force[18 * j + c]));
+    for (int c = 0; c < 18; ++c) close(vec.force[18 * j + c], ref.force[18 * j + c], fscale);
+    close(vec.opening[j], ref.opening[j], std::fabs(ref.opening[j]) + 1e-300);
+    close(vec.slip[j], ref.slip[j], ref.slip[j] + 1e-300);
+    close(vec.damage[j], ref.damage[j], 1.0);
+    close(vec.energy[j], ref.energy[j], ref.energy[j] + 1e-300);
+    for (int q = 0; q < points; ++q) {
+      const size_t i = static_cast<size_t>(points) * j + q;
+      close(vec.d_max[i], ref.d_max[i], 1.0);
+      EXPECT_EQ(vec.d_max[i] >= 1.0, ref.d_max[i] >= 1.0);
+      EXPECT_EQ(vec.d_max[i] == 0.0, ref.d_max[i] == 0.0);
+    }
+  }
+  return worst;
+}
+
+// The random joints through both paths, for both rules, both softening rules, without and with initial
+// offsets. Both paths evaluate the same expressions in the same order; they may differ only by the
+// compiler's fused multiply-adds, a few ulps per operation over ~500 operations: 1e-12 of each joint's
+// largest force (or of the value) is fair. Every discrete outcome (histories, failures, breaks, modes,
+// status counts) must be identical.
+TEST(JointForces, VectorMatchesScalarReference) {
+  RecordProperty("vectorised", joint_forces_vectorised() ? "yes" : "no");
+  for (int points : {3, 7}) {
+    const RandomJoints joints = random_joints(points);
+    double worst = 0.0;
+    for (Softening rule : {Softening::energy_exact, Softening::y_compatible})
+      for (bool offsets : {false, true}) {
+        Outcome ref, vec;
+        run_random(joints, rule, offsets, &joint_forces_scalar, false, ref);
+        run_random(joints, rule, offsets, &joint_forces, true, vec);
+        EXPECT_GT(ref.status.broke, 50u);
+        EXPECT_GT(ref.status.degenerate, 10u);
+        if (rule == Softening::energy_exact) {
+          EXPECT_GT(ref.status.short_softening, 10u);
+        }
+        const double w = compare(ref, vec, points);
+        EXPECT_LT(w, 1e-12) << points << " points, rule " << static_cast<int>(rule) << ", offsets "
+                            << offsets;
+        worst = std::max(worst, w);
+      }
+    record(points == 3 ? "worst_relative_difference_3" : "worst_relative_difference_7", worst);
+  }
 }
 
 }  // namespace

@@ -61,14 +61,15 @@ struct OneJoint {
   std::vector<uint8_t> broken{0};
   std::vector<JointBreak> breaks = std::vector<JointBreak>(4);
   std::atomic<size_t> break_count{0};
+  std::vector<double> offset;  // initial offset (3), empty = none
   JointStatus status;
 
   explicit OneJoint(int points, Softening s = Softening::energy_exact, JointMaterial m = limestone())
       : materials{m}, rule(&joint_rule(points)), softening(s), d_max(static_cast<size_t>(points), 0.0) {}
 
   JointArgs args() {
-    return {x,     nodes,   material, materials, rule,   softening, d_max,       broken,
-            force, opening, slip,     damage,    energy, breaks,    &break_count};
+    return {x,     nodes,   material, materials, rule,   softening, d_max,        broken,
+            force, opening, slip,     damage,    energy, breaks,    &break_count, offset};
   }
   void run() { status += g_kernel(args(), 0, 1); }
   // Side A at reference + (sx, sy, o); side B at reference. Then evaluate.

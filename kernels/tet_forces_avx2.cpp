@@ -23,7 +23,7 @@ struct Group {
 };
 
 template <bool kPrestress>
-void load_group(const TetForceArgs& a, size_t first, int count, Group& g) {
+[[gnu::always_inline]] inline void load_group(const TetForceArgs& a, size_t first, int count, Group& g) {
   g.count = count;
   for (int l = 0; l < 4; ++l) g.tet[l] = first + static_cast<size_t>(l < count ? l : count - 1);
   auto nodes_of_corner = [&](int n, size_t node[4]) {
@@ -62,7 +62,7 @@ void load_group(const TetForceArgs& a, size_t first, int count, Group& g) {
 
 // j - ln(1 + j) per lane: the series everywhere, then the few lanes with |j| >= small_j redone exactly as
 // the scalar path does (large volumetric strains are rare, so this is almost never taken).
-V4 excess_log(V4 j) {
+[[gnu::always_inline]] inline V4 excess_log(V4 j) {
   V4 g = tet_law::excess_log_series(j);
   const V4 abs_j = _mm256_andnot_pd(_mm256_set1_pd(-0.0), j);
   const int large = _mm256_movemask_pd(_mm256_cmp_pd(abs_j, _mm256_set1_pd(tet_law::small_j), _CMP_GE_OQ));
@@ -75,7 +75,8 @@ V4 excess_log(V4 j) {
   return _mm256_load_pd(lanes_g);
 }
 
-void store_group(const TetForceArgs& a, const Group& g, V4 ok, tet_law::Response<V4>& r) {
+[[gnu::always_inline]] inline void store_group(const TetForceArgs& a, const Group& g, V4 ok,
+                                               tet_law::Response<V4>& r) {
   const size_t t = g.tet[0];
   V4 f[12];
   for (int n = 0; n < 12; ++n) f[n] = simd::keep(ok, r.force[n / 3][n % 3]);
@@ -91,7 +92,7 @@ void store_group(const TetForceArgs& a, const Group& g, V4 ok, tet_law::Response
 }
 
 // Records tets of this group whose J is not > 0 although their reference volume is.
-void count_inverted(const Group& g, V4 J, TetForceStatus& status) {
+[[gnu::always_inline]] inline void count_inverted(const Group& g, V4 J, TetForceStatus& status) {
   const V4 active = _mm256_cmp_pd(g.c.volume0, _mm256_setzero_pd(), _CMP_GT_OQ);
   const V4 bad = _mm256_andnot_pd(_mm256_cmp_pd(J, _mm256_setzero_pd(), _CMP_GT_OQ), active);
   const int bits = _mm256_movemask_pd(bad) & ((1 << g.count) - 1);
@@ -102,7 +103,7 @@ void count_inverted(const Group& g, V4 J, TetForceStatus& status) {
 
 // kPrestress: an initial stress is given; without, it is compile-time absent.
 template <bool kPrestress>
-void process_group(const TetForceArgs& a, Group& g, TetForceStatus& status) {
+[[gnu::always_inline]] inline void process_group(const TetForceArgs& a, Group& g, TetForceStatus& status) {
   tet_law::Wanted<V4> want;
   want.energy = !a.strain_energy.empty();
   want.power = !a.viscous_power.empty();

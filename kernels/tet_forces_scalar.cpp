@@ -14,7 +14,8 @@ void write_zeros(const TetForceArgs& args, size_t t) {
   if (!args.viscous_power.empty()) args.viscous_power[t] = 0.0;
 }
 
-void write_response(const TetForceArgs& args, size_t t, const tet_law::Response<double>& r) {
+[[gnu::always_inline]] inline void write_response(const TetForceArgs& args, size_t t,
+                                                  const tet_law::Response<double>& r) {
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) args.corner_force[12 * t + 3 * a + i] = r.force[a][i];
   if (!args.stress.empty())

@@ -5,6 +5,9 @@
 // Everything small-strain sensitive is formed from the displacement gradient H = F - I rather than from F,
 // so B - I, J - 1 and the energy keep full relative precision down to strains of 1e-12 and below
 // (B - I from F F^T would lose all digits under ~1e-8 because of the cancellation against I).
+//
+// Every function is forced inline: each path instantiates the law twice (with and without an initial
+// stress), and gcc then stops inlining it on its own, which cost ~30 % of the throughput.
 #include <cmath>
 
 namespace rift::kernels::tet_law {
@@ -51,20 +54,20 @@ struct Wanted {
 
 // Edge vectors e[c] = p[c+1] - p[0] of the corner positions or velocities p.
 template <class T>
-inline void edges(const T p[4][3], T e[3][3]) {
+[[gnu::always_inline]] inline void edges(const T p[4][3], T e[3][3]) {
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < 3; ++i) e[c][i] = p[c + 1][i] - p[0][i];
 }
 
 // G = E Dm with E's columns the edges e[c] (position edges give F, velocity edges F-dot).
 template <class T>
-inline void edge_gradient(const T e[3][3], const T dm[9], T G[3][3]) {
+[[gnu::always_inline]] inline void edge_gradient(const T e[3][3], const T dm[9], T G[3][3]) {
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) G[i][k] = e[0][i] * dm[k] + e[1][i] * dm[3 + k] + e[2][i] * dm[6 + k];
 }
 
 template <class T>
-inline void cofactors(const T A[3][3], T C[3][3]) {
+[[gnu::always_inline]] inline void cofactors(const T A[3][3], T C[3][3]) {
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int k = 0; k < 3; ++k) {
@@ -78,7 +81,7 @@ inline void cofactors(const T A[3][3], T C[3][3]) {
 //   J - 1 = tr H + I2(H) + det H,   cof(I + H) = (1 + tr H) I - H^T + cof(H),
 // each term free of cancellation, and cof(H) serves both.
 template <class T>
-inline void kinematics(const T ex[3][3], const T dm[9], Kinematics<T>& k) {
+[[gnu::always_inline]] inline void kinematics(const T ex[3][3], const T dm[9], Kinematics<T>& k) {
   const T one = splat<T>(1.0);
   edge_gradient(ex, dm, k.H);
   for (int i = 0; i < 3; ++i) k.H[i][i] = k.H[i][i] - one;
@@ -101,7 +104,7 @@ constexpr double small_j = 0.01;
 // j^2 (1/2 - j/3 + j^2/4 - ... + j^8/10), the polynomial evaluated in Estrin's form (pairs, then pairs of
 // pairs) so its dependency chain is 4 multiply-adds long instead of 9.
 template <class T>
-inline T excess_log_series(T j) {
+[[gnu::always_inline]] inline T excess_log_series(T j) {
   auto c = [](int n) { return splat<T>((n % 2 ? -1.0 : 1.0) / (n + 2)); };  // coefficient of j^n
   const T j2 = j * j, j4 = j2 * j2;
   const T p01 = c(0) + c(1) * j, p23 = c(2) + c(3) * j, p45 = c(4) + c(5) * j, p67 = c(6) + c(7) * j;
@@ -109,7 +112,7 @@ inline T excess_log_series(T j) {
   const T p8 = c(8) * j4;
   return j2 * (p03 + (p47 + p8) * j4);
 }
-inline double excess_log(double j) {
+[[gnu::always_inline]] inline double excess_log(double j) {
   return std::fabs(j) < small_j ? excess_log_series(j) : j - std::log1p(j);
 }
 
@@ -117,8 +120,8 @@ inline double excess_log(double j) {
 // J - 1/J = j (2 + j) / J and D = sym(F-dot F^-1) = sym(F-dot cof^T) / J. two_d receives 2 J D (Voigt
 // order) for the viscous power.
 template <class T>
-inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3], const Constants<T>& c, T s[6],
-                          T two_d[6]) {
+[[gnu::always_inline]] inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3],
+                                                 const Constants<T>& c, T s[6], T two_d[6]) {
   static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
   const T inv_j = splat<T>(1.0) / k.J;
   const T shear = c.mu * inv_j;
@@ -139,7 +142,8 @@ inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3], const Cons
 
 // f_a = -V0 P grad_X N_a, P = sigma cof(F) (first Piola), grad_X N_a = row a-1 of Dm; f_0 balances.
 template <class T>
-inline void corner_forces(const Kinematics<T>& k, const T s[6], const T dm[9], T volume0, T f[4][3]) {
+[[gnu::always_inline]] inline void corner_forces(const Kinematics<T>& k, const T s[6], const T dm[9],
+                                                 T volume0, T f[4][3]) {
   const T sig[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
   T P[3][3];
   for (int i = 0; i < 3; ++i)
@@ -158,7 +162,7 @@ inline void corner_forces(const Kinematics<T>& k, const T s[6], const T dm[9], T
 // W V0 with W = mu/2 (|H|^2 - 2q + 2g) + lambda/4 (j^2 + 2g), g = j - ln J: the same W as in
 // tet_forces.hpp, rearranged using tr C - 3 = |H|^2 + 2 tr H and tr H - j = -q.
 template <class T>
-inline T strain_energy(const Kinematics<T>& k, T g, const Constants<T>& c) {
+[[gnu::always_inline]] inline T strain_energy(const Kinematics<T>& k, T g, const Constants<T>& c) {
   T h2 = splat<T>(0.0);
   for (int i = 0; i < 3; ++i)
     for (int m = 0; m < 3; ++m) h2 = h2 + k.H[i][m] * k.H[i][m];
@@ -170,7 +174,7 @@ inline T strain_energy(const Kinematics<T>& k, T g, const Constants<T>& c) {
 
 // V0 sigma0 : H = V0 sigma0 : (F - I), the first-order potential of the initial stress (tet_forces.hpp).
 template <class T>
-inline T prestress_energy(const Kinematics<T>& k, const T s0[6], T volume0) {
+[[gnu::always_inline]] inline T prestress_energy(const Kinematics<T>& k, const T s0[6], T volume0) {
   const T e = s0[0] * k.H[0][0] + s0[1] * k.H[1][1] + s0[2] * k.H[2][2] + s0[3] * (k.H[0][1] + k.H[1][0]) +
               s0[4] * (k.H[1][2] + k.H[2][1]) + s0[5] * (k.H[2][0] + k.H[0][2]);
   return e * volume0;
@@ -179,7 +183,7 @@ inline T prestress_energy(const Kinematics<T>& k, const T s0[6], T volume0) {
 // eta (D:D) V with D = two_d / (2 J) and V = J V0: eta V0 (sum of two_d^2, off-diagonal twice) / (4 J).
 // A sum of squares, so >= 0 whatever the rounding.
 template <class T>
-inline T viscous_power(const T two_d[6], T J, const Constants<T>& c) {
+[[gnu::always_inline]] inline T viscous_power(const T two_d[6], T J, const Constants<T>& c) {
   const T diagonal = two_d[0] * two_d[0] + two_d[1] * two_d[1] + two_d[2] * two_d[2];
   const T off = two_d[3] * two_d[3] + two_d[4] * two_d[4] + two_d[5] * two_d[5];
   return splat<T>(0.25) * c.eta * c.volume0 * (diagonal + splat<T>(2.0) * off) / J;
@@ -188,8 +192,9 @@ inline T viscous_power(const T two_d[6], T J, const Constants<T>& c) {
 // Everything after the kinematics (ev: velocity edges); the caller has checked J > 0 (lanes where it is not
 // are discarded). g = j - ln J for the energy (ignored unless want.energy).
 template <class T>
-inline void response(const Kinematics<T>& k, const T ev[3][3], const T dm[9], const Constants<T>& c, T g,
-                     const Wanted<T>& want, Response<T>& r) {
+[[gnu::always_inline]] inline void response(const Kinematics<T>& k, const T ev[3][3], const T dm[9],
+                                            const Constants<T>& c, T g, const Wanted<T>& want,
+                                            Response<T>& r) {
   T Fdot[3][3], two_d[6];
   edge_gradient(ev, dm, Fdot);
   cauchy_stress(k, Fdot, c, r.stress, two_d);

@@ -48,8 +48,8 @@ int32_t classify(const NotchedBox& box, const TetMesh& mesh, const std::array<in
 TetMesh generate_box_mesh(const MeshGenerateSpec& spec, Mesh3Stats* stats) {
   const NotchedBox box = make_notched_box(spec);
   PolyhedralMeshInput in;
-  in.surface = extruded_polygon(box.polygon, box.lo[box.axis[2]], box.hi[box.axis[2]],
-                                [&](double s, double t, double w) { return to_3d(box, s, t, w); });
+  in.patches.push_back(extruded_polygon(box.polygon, box.lo[box.axis[2]], box.hi[box.axis[2]],
+                                        [&](double s, double t, double w) { return to_3d(box, s, t, w); }));
   in.feature_angle_deg = kFeatureAngleDeg;
   in.size = [&](const Vec3& p) { return mesh_size_at(spec, box, p); };
   in.seed = spec.seed;

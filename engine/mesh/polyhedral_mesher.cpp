@@ -7,7 +7,7 @@
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
-#include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
+#include <CGAL/Polyhedral_complex_mesh_domain_3.h>
 #include <CGAL/Random.h>
 #include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
@@ -24,7 +24,7 @@ namespace rift {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<K>;
+using Domain = CGAL::Polyhedral_complex_mesh_domain_3<K>;
 using Polyhedron = Domain::Polyhedron;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr, Domain::Corner_index, Domain::Curve_index>;
@@ -124,7 +124,11 @@ C3t3 run_mesh_3(const PolyhedralMeshInput& in, Mesh3Stats& stats) {
   // Every random draw in Mesh_3 comes from one of these two generators; seeding both pins the result.
   CGAL::get_default_random() = CGAL::Random(in.seed);
   CGAL::Random domain_random(in.seed);
-  Domain domain(to_polyhedron(in.surface), &domain_random);
+  std::vector<Polyhedron> patches;
+  for (const auto& patch : in.patches) patches.push_back(to_polyhedron(patch));
+  // Every patch has the solid (subdomain 1) behind its outward faces and nothing (0) in front.
+  const std::vector<std::pair<int, int>> sides(patches.size(), {1, 0});
+  Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &domain_random);
   domain.detect_features(in.feature_angle_deg);
 
   const SizingField size{&in.size, 1.0}, distance{&in.size, 0.1};
@@ -222,7 +226,17 @@ PolyhedralSurface extruded_polygon(const std::vector<std::array<double, 2>>& pol
 
 TetMesh mesh_polyhedron(const PolyhedralMeshInput& input, Mesh3Stats* stats) {
   Mesh3Stats local;
-  const C3t3 c3t3 = run_mesh_3(input, local);
+  const C3t3 c3t3 = [&] {
+    try {
+      return run_mesh_3(input, local);
+    } catch (const CGAL::Failure_exception& e) {
+      // Mesh_3 aborts on configurations its inexact constructions cannot resolve (seen only with many
+      // protected edges on slanted faces, see cylinder_generator.hpp); a slightly different size helps.
+      const std::string what = e.message().substr(0, e.message().find('\n'));
+      throw Error("mesh.generate: expected CGAL Mesh_3 to mesh the shape, found it failed (" + what +
+                  "); a slightly different size_min or size_max usually avoids this");
+    }
+  }();
   if (stats) *stats = local;
   if (c3t3.number_of_cells_in_complex() == 0)
     throw Error("mesh.generate: expected a tet mesh, found none (CGAL Mesh_3 produced no cells)");

@@ -1,8 +1,12 @@
 #pragma once
-// Tet mesh of a closed polyhedral solid (a prism: a 2-D polygon extruded along one axis) with CGAL
-// Mesh_3: Delaunay refinement of a polyhedral domain whose sharp edges are protected, so every edge
-// and planar face of the solid is reproduced exactly. The generators (box_generator, cylinder_generator)
-// describe their shape, sizing field and surface names; this file is the only one that sees CGAL.
+// Tet mesh of a closed polyhedral solid with CGAL Mesh_3: Delaunay refinement of a polyhedral complex
+// domain (CGAL::Polyhedral_complex_mesh_domain_3) whose protected edges are the borders between the
+// given surface patches plus, inside each patch, the edges where the normal turns by more than
+// feature_angle_deg. Protected edges and the planar faces between them are reproduced exactly; a
+// patch made of slightly turning facets (a faceted curve, edges not protected) is meshed like a
+// curved surface, its nodes on the facets and its triangles spanning them. No triangle crosses a
+// protected edge. The generators (box_generator, cylinder_generator) describe their shape, sizing
+// field and surface names; this file is the only one that sees CGAL.
 //
 // Sizing h(p), given by the caller, is used by Mesh_3 as
 //   edge_size   - distance between consecutive points on protected edges,
@@ -33,8 +37,8 @@
 
 namespace rift {
 
-// A closed surface given as planar polygons with outward (counterclockwise seen from outside) vertex
-// order; polygons need not be convex.
+// A surface (closed, or one patch of a closed surface) given as planar polygons with outward
+// (counterclockwise seen from outside) vertex order; polygons need not be convex.
 struct PolyhedralSurface {
   std::vector<Vec3> points;
   std::vector<std::vector<size_t>> faces;
@@ -46,9 +50,9 @@ PolyhedralSurface extruded_polygon(const std::vector<std::array<double, 2>>& pol
                                    const std::function<Vec3(double s, double t, double w)>& to_3d);
 
 struct PolyhedralMeshInput {
-  PolyhedralSurface surface;
-  // Edges where the surface normal turns by more than this become protected features. It must lie
-  // between round-off (coplanar triangles of one face) and the smallest real turn of the solid.
+  std::vector<PolyhedralSurface> patches;  // together a closed surface; their borders are protected
+  // Edges inside a patch where the surface normal turns by more than this are protected too. It must
+  // lie between round-off (coplanar triangles of one face) and the smallest turn to be kept sharp.
   double feature_angle_deg = 1.0;
   std::function<double(const Vec3&)> size;  // h(p) [m], see above
   uint32_t seed = 1;

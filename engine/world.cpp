@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "engine/mesh/box_generator.hpp"
+#include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "systems/solid_model.hpp"
 
@@ -24,6 +25,8 @@ double World::stable_dt() const {
 
 TetMesh load_mesh(const MeshSpec& spec) {
   if (spec.file) return read_msh(*spec.file, spec.scale);
+  if (spec.generate->shape == MeshGenerateSpec::Shape::cylinder)
+    return generate_cylinder_mesh(*spec.generate);
   return generate_box_mesh(*spec.generate);
 }
 

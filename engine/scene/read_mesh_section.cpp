@@ -1,4 +1,4 @@
-// mesh: a Gmsh file, or a box (with notches) the mesher generates.
+// mesh: a Gmsh file, or a box (with notches) or a disc the mesher generates.
 #include <filesystem>
 
 #include "engine/scene/number_text.hpp"
@@ -54,9 +54,43 @@ NotchSpec read_notch(MapReader& n, const MeshGenerateSpec& box, bool box_ok) {
   return notch;
 }
 
+CylinderSpec read_cylinder(MapReader& c) {
+  CylinderSpec cylinder;
+  cylinder.diameter = c.real("diameter", positive("m"), std::nullopt);
+  cylinder.thickness = c.real("thickness", positive("m"), std::nullopt);
+  cylinder.load_arc = c.real("load_arc", RealRule{"deg", 0.0, 90.0, true, true}, 10.0);
+  c.finish();
+  return cylinder;
+}
+
+// Exactly one of box / cylinder. Keys of the shape not used are declared without being read (a silent
+// reader reports nothing), so the docs test knows them whichever shape a scene uses.
+void read_shape(MapReader& g, MeshGenerateSpec& spec) {
+  const bool has_box = g.has("box"), has_cylinder = g.has("cylinder");
+  if (has_box == has_cylinder && !g.silent())
+    g.context().error(has_box ? g.where("cylinder") : g.where(), "mesh.generate",
+                      "exactly one of mesh.generate.box or mesh.generate.cylinder",
+                      has_box ? "both" : "neither");
+  if (has_box && !has_cylinder) {
+    spec.size = g.vec3("box", positive("m"), std::nullopt);
+  } else {
+    g.declare("box");
+  }
+  if (has_cylinder && !has_box) {
+    spec.shape = MeshGenerateSpec::Shape::cylinder;
+    MapReader c = g.section("cylinder", false);
+    spec.cylinder = read_cylinder(c);
+  } else {
+    g.declare("cylinder");
+    MapReader unused =
+        MapReader::silenced(g.context(), g.key_path("cylinder"), g.key_path("cylinder"), g.where());
+    read_cylinder(unused);
+  }
+}
+
 MeshGenerateSpec read_generate(MapReader& g) {
   MeshGenerateSpec spec;
-  spec.size = g.vec3("box", positive("m"), std::nullopt);
+  read_shape(g, spec);
   spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
   spec.size_min = g.real("size_min", positive("m"), std::nullopt);
   spec.size_max = g.real("size_max", positive("m"), std::nullopt);
@@ -64,8 +98,13 @@ MeshGenerateSpec read_generate(MapReader& g) {
     g.error("size_max", "a number in m, >= size_min (" + message_real(spec.size_min) + ")");
   spec.grading = g.real("grading", positive(""), 0.5);
   spec.seed = static_cast<uint32_t>(g.integer("seed", IntRule{0, UINT32_MAX}, 1));
-  const bool box_ok = g.ok("box") && g.ok("origin");
-  for (auto& n : g.section_list("notches", 0)) spec.notches.push_back(read_notch(n, spec, box_ok));
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder) {
+    g.forbid("notches", "for a cylinder (notches cut boxes)");
+  } else {
+    // Fits are checked only against a box that was read (not with both shapes or neither given).
+    const bool box_ok = g.has("box") && !g.has("cylinder") && g.ok("box") && g.ok("origin");
+    for (auto& n : g.section_list("notches", 0)) spec.notches.push_back(read_notch(n, spec, box_ok));
+  }
   g.finish();
   return spec;
 }

@@ -104,12 +104,21 @@ void emit_mesh(Lines& o, const MeshSpec& m) {
   if (!m.generate) return;
   const MeshGenerateSpec& g = *m.generate;
   o.line(1, "generate");
-  o.line(2, "box", vec3(g.size));
+  const bool cylinder = g.shape == MeshGenerateSpec::Shape::cylinder;
+  if (cylinder) {
+    o.line(2, "cylinder");
+    o.line(3, "diameter", yaml_real(g.cylinder.diameter));
+    o.line(3, "thickness", yaml_real(g.cylinder.thickness));
+    o.line(3, "load_arc", yaml_real(g.cylinder.load_arc));
+  } else {
+    o.line(2, "box", vec3(g.size));
+  }
   o.line(2, "origin", vec3(g.origin));
   o.line(2, "size_min", yaml_real(g.size_min));
   o.line(2, "size_max", yaml_real(g.size_max));
   o.line(2, "grading", yaml_real(g.grading));
   o.line(2, "seed", std::to_string(g.seed));
+  if (cylinder) return;  // notches are for boxes only (the reader forbids the key)
   o.line(2, "notches", g.notches.empty() ? "[]" : "");
   for (const auto& n : g.notches) emit_notch(o, n);
 }

@@ -24,14 +24,25 @@ struct NotchSpec {
   std::string name = "notch";  // surface name of the notch faces
 };
 
+// A disc (short cylinder) for the Brazilian test: axis along z, loaded on two arcs centred on +y and -y.
+struct CylinderSpec {
+  double diameter = 0.0;   // [m]
+  double thickness = 0.0;  // length along the axis (z) [m]
+  double load_arc = 10.0;  // full angle of each loading arc [deg], 0 < load_arc < 90
+};
+
 struct MeshGenerateSpec {
-  std::array<double, 3> size{};    // box edge lengths [m]
-  std::array<double, 3> origin{};  // lower corner [m]
-  std::vector<NotchSpec> notches;
-  double size_min = 0.0;  // element size at the features (notch faces) [m]
-  double size_max = 0.0;  // element size far from them [m]
-  double grading = 0.5;   // growth of element size per unit distance from a feature [-]
-  uint32_t seed = 1;      // generator seed: the same seed gives the same mesh
+  enum class Shape { box, cylinder };
+  Shape shape = Shape::box;
+  std::array<double, 3> size{};  // box: edge lengths [m]
+  CylinderSpec cylinder;         // cylinder: its dimensions
+  // box: lower corner; cylinder: (x, y) of the axis and z of the lower flat face [m]
+  std::array<double, 3> origin{};
+  std::vector<NotchSpec> notches;  // box only
+  double size_min = 0.0;           // element size at the features (notch faces, loading arcs) [m]
+  double size_max = 0.0;           // element size far from them [m]
+  double grading = 0.5;            // growth of element size per unit distance from a feature [-]
+  uint32_t seed = 1;               // generator seed: the same seed gives the same mesh
 };
 
 struct MeshSpec {

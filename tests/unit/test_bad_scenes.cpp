@@ -46,6 +46,8 @@ const std::vector<BadScene> kBadScenes = {
     {"ill_formed_number.yaml",
      {{15, 14, "solid.materials[0].young", "a number in Pa", "'6.0e10.5', which is not a number", ""}}},
     {"file_and_generate.yaml", {{8, 3, "mesh", "exactly one of mesh.file or mesh.generate", "both", ""}}},
+    {"box_and_cylinder.yaml",
+     {{9, 5, "mesh.generate", "exactly one of mesh.generate.box or mesh.generate.cylinder", "both", ""}}},
     {"missing_required.yaml", {{4, 1, "time.end", "(required)", "the key is missing", ""}}},
     {"boolean_yes.yaml", {{12, 12, "output.surface", "true or false", "'yes'", ""}}},
     {"unknown_boundary_type.yaml",

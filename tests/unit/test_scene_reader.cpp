@@ -234,6 +234,30 @@ TEST(SceneDefaults, NotchIsReadAndChecked) {
             "mesh.generate.notches[0].opening_axis");
 }
 
+TEST(SceneDefaults, CylinderIsReadAndChecked) {
+  const std::string head = "scene: {name: n}\ntime: {end: 1}\n";
+  const std::string disc =
+      "mesh:\n  generate:\n    cylinder: {diameter: 0.05, thickness: 0.025}\n"
+      "    size_min: 0.002\n    size_max: 0.005\n";
+  const MeshGenerateSpec g = *read_ok(head + disc).mesh.generate;
+  EXPECT_EQ(g.shape, MeshGenerateSpec::Shape::cylinder);
+  EXPECT_EQ(g.cylinder.diameter, 0.05);
+  EXPECT_EQ(g.cylinder.thickness, 0.025);
+  EXPECT_EQ(g.cylinder.load_arc, 10.0);
+  EXPECT_EQ(read_ok(kMinimal).mesh.generate->shape, MeshGenerateSpec::Shape::box);
+  const SceneDiagnostic arc = read_one_error(head + disc, {"mesh.generate.cylinder.load_arc=90"});
+  EXPECT_EQ(arc.key_path, "mesh.generate.cylinder.load_arc");
+  EXPECT_EQ(arc.expected, "a number in deg, in (0, 90)");
+  EXPECT_EQ(read_one_error(head + disc, {"mesh.generate.cylinder.diameter=0"}).key_path,
+            "mesh.generate.cylinder.diameter");
+  const SceneDiagnostic notch = read_one_error(head + disc, {"mesh.generate.notches=[]"});
+  EXPECT_EQ(notch.key_path, "mesh.generate.notches");
+  EXPECT_EQ(notch.line, 0);  // given by --set
+  const SceneDiagnostic neither = read_one_error(head + "mesh: {generate: {size_min: 1, size_max: 1}}\n");
+  EXPECT_EQ(neither.key_path, "mesh.generate");
+  EXPECT_EQ(neither.found, "neither");
+}
+
 // --- Overrides -----------------------------------------------------------------------------------
 
 TEST(SceneOverrides, ReplaceCreateAndIndex) {

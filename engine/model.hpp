@@ -3,6 +3,7 @@
 // creates its tables in the store, owns its systems, and answers the run loop's questions (stable
 // step, health after a step, fields to write, metrics for the time series and the summary).
 // A model exists in a run only when its section is in the scene.
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,6 +31,8 @@ class Model {
   // One row of the time series: (name, value) pairs in a fixed order.
   virtual void metrics(double time, std::vector<std::pair<std::string, double>>& row) {}
   virtual void summarize(nlohmann::json& summary) const {}
+  // Logs beside the time series (e.g. the fracture log), written atomically whenever it is.
+  virtual void write_logs(const std::filesystem::path& dir) const {}
 };
 
 }  // namespace rift

@@ -222,6 +222,7 @@ void Simulation::write_time_series() const {
     csv += "\n";
   }
   write_text_atomic(options_.out_dir / "timeseries.csv", csv);
+  for (const auto& m : world_->models) m->write_logs(options_.out_dir);
 }
 
 void Simulation::write_checkpoint() {

@@ -4,33 +4,45 @@
 
 namespace rift::kernels {
 
-size_t integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
-  size_t bad = 0;
+NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
+  NodeStepResult r;
   for (size_t n = begin; n < end; ++n) {
-    double f[3] = {0.0, 0.0, 0.0};
+    // Per source, so the work of each can be booked; slots are grouped by source within a node's list.
+    double f[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (int32_t k = s.node_range[2 * n]; k < s.node_range[2 * n + 1]; ++k) {
       const int64_t slot = s.slots[k];
-      const double* src =
-          slot < s.split_slot ? &s.primary[3 * slot] : &s.secondary[3 * (slot - s.split_slot)];
-      f[0] += src[0];
-      f[1] += src[1];
-      f[2] += src[2];
+      const int src = slot < s.first_slot[1] ? 0 : slot < s.first_slot[2] ? 1 : 2;
+      const double* p = &s.source[src][3 * (slot - s.first_slot[src])];
+      f[src][0] += p[0];
+      f[src][1] += p[1];
+      f[src][2] += p[2];
     }
-    const double w = a.inv_mass[n];
-    const int32_t bc = a.held_velocity[n];
+    const double w = a.inv_mass[n], m = a.mass[n];
     bool finite = true;
     for (int c = 0; c < 3; ++c) {
       const size_t i = 3 * n + c;
-      a.f[i] = f[c];
+      const double internal = f[0][c] + f[1][c];
+      const double total = internal + f[2][c];
+      a.f[i] = total;
+      const double v_old = a.v[i];
+      const int32_t bc = a.held_velocity[i];
       const double held = bc >= 0 ? a.prescribed[3 * bc + c] : 0.0;
-      const double v = a.free_mask[i] ? a.v[i] + a.dt * (f[c] * w + a.gravity[c]) : held;
+      const bool is_free = a.free_mask[i];
+      const double v = is_free ? v_old + a.dt * (total * w + a.gravity[c]) : held;
       a.v[i] = v;
       a.x[i] += a.dt * v;
       finite = finite && std::isfinite(a.x[i]) && std::isfinite(v);
+      const double dx = 0.5 * a.dt * (v_old + v);
+      r.work[0] += f[0][c] * dx;
+      r.work[1] += f[1][c] * dx;
+      // External: loads and gravity on a free component; on a held one, whatever the prescribed motion
+      // needed beyond the internal forces (load + gravity + reaction = m dv/dt - internal).
+      r.work[2] +=
+          is_free ? (f[2][c] + m * a.gravity[c]) * dx : 0.5 * m * (v * v - v_old * v_old) - internal * dx;
     }
-    bad += finite ? 0 : 1;
+    r.non_finite += finite ? 0 : 1;
   }
-  return bad;
+  return r;
 }
 
 }  // namespace rift::kernels

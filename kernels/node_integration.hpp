@@ -4,18 +4,21 @@
 //      wrote into their own rows (each node lists its "slots"; the order is fixed at set-up, so the
 //      sum is bitwise identical on any thread count, and no atomics are needed);
 //   2. central difference (leapfrog): v(t+dt/2) = v(t-dt/2) + dt (f/m + g);  x(t+dt) = x(t) + dt v(t+dt/2);
-//      held components take the prescribed velocity of their boundary condition instead.
+//      held components take the prescribed velocity of their boundary condition instead;
+//   3. work: each force source's work over the step, f(t) . dx with dx = dt (v(t-dt/2) + v(t+dt/2)) / 2
+//      (the trapezoid increment that makes the sum of all works equal the change of the half-step kinetic
+//      energy exactly). The external work includes gravity and the reactions of held components.
 #include <cstdint>
 #include <span>
 
 namespace rift::kernels {
 
-// Corner forces of all producers, seen as one list of slots: slot s < split_slot reads
-// primary[3s..3s+2], otherwise secondary[3(s - split_slot)..].
+// Corner forces of up to three producers, seen as one list of slots: source k covers the slots
+// [first_slot[k], first_slot[k + 1]) and holds 3 doubles per slot (first_slot[3] = total slot count).
+// Sources 0 and 1 are internal forces (tets, joints), source 2 external (loaded faces).
 struct ForceSlots {
-  std::span<const double> primary;    // e.g. tet corner forces, 12 per tet = 4 slots
-  std::span<const double> secondary;  // e.g. loaded-face corner forces, 9 per face = 3 slots
-  int64_t split_slot;
+  std::span<const double> source[3];
+  int64_t first_slot[4];
   std::span<const int32_t> node_range;  // 2 per node: [begin, end) of its entries in `slots`
   std::span<const int32_t> slots;
 };
@@ -24,13 +27,23 @@ struct NodeIntegrationArgs {
   double dt;
   double gravity[3];
   std::span<double> x, v, f;               // 3 per node; f is overwritten with the gathered total force
-  std::span<const double> inv_mass;        // 1 per node (0 for a massless node: it then only follows BCs)
+  std::span<const double> mass, inv_mass;  // 1 per node (inv_mass 0 for a massless node: it then only
+                                           // follows BCs)
   std::span<const uint8_t> free_mask;      // 3 per node: 1 integrate, 0 held at the prescribed velocity
-  std::span<const int32_t> held_velocity;  // 1 per node: index into prescribed (-1: none, velocity 0)
+  std::span<const int32_t> held_velocity;  // 3 per node: condition index per component (-1: velocity 0)
   std::span<const double> prescribed;      // 3 per boundary condition: velocity at t + dt/2
 };
 
-// Returns the number of nodes whose new position or velocity is not finite (0 in a healthy run).
-size_t integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end);
+struct NodeStepResult {
+  size_t non_finite = 0;  // nodes whose new position or velocity is not finite (0 in a healthy run)
+  double work[3] = {0.0, 0.0, 0.0};  // work of source 0, source 1, and everything external [J]
+  NodeStepResult& operator+=(const NodeStepResult& o) {
+    non_finite += o.non_finite;
+    for (int k = 0; k < 3; ++k) work[k] += o.work[k];
+    return *this;
+  }
+};
+
+NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end);
 
 }  // namespace rift::kernels

@@ -19,7 +19,11 @@ void surface_loads(std::span<const double> x, std::span<const int32_t> face_node
     const double area = std::sqrt(na[0] * na[0] + na[1] * na[1] + na[2] * na[2]);
     const FaceLoad& L = loads[face_load[e]];
     double f[3];
-    for (int c = 0; c < 3; ++c) f[c] = (-L.pressure * na[c] + L.traction[c] * area) / 3.0;
+    const double* S = L.stress;
+    const double sn[3] = {S[0] * na[0] + S[3] * na[1] + S[5] * na[2],
+                          S[3] * na[0] + S[1] * na[1] + S[4] * na[2],
+                          S[5] * na[0] + S[4] * na[1] + S[2] * na[2]};
+    for (int c = 0; c < 3; ++c) f[c] = (-L.pressure * na[c] + L.traction[c] * area + sn[c]) / 3.0;
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) corner_force[9 * e + 3 * k + c] = f[c];
   }

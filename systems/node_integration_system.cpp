@@ -15,15 +15,25 @@ NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoun
     : store_(store), conditions_(std::move(conditions)), gravity_(gravity) {
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
-  block_non_finite_.resize((nodes + grain - 1) / grain);
+  blocks_.resize((nodes + grain - 1) / grain);
 }
 
 Access NodeIntegrationSystem::access() const {
   using solid::col;
   const char* N = solid::node_table;
-  return {{col(solid::tet_table, "corner_force"), col(solid::face_table, "corner_force"), col(N, "inv_mass"),
-           col(N, "free"), col(N, "held"), col(N, "slots"), col(solid::slot_table, "slot")},
-          {col(N, "x"), col(N, "v"), col(N, "f")}};
+  std::vector<std::string> reads{col(solid::tet_table, "corner_force"),
+                                 col(solid::face_table, "corner_force"),
+                                 col(N, "mass"),
+                                 col(N, "inv_mass"),
+                                 col(N, "free"),
+                                 col(N, "held"),
+                                 col(N, "slots"),
+                                 col(solid::slot_table, "slot")};
+  if (store_.has(solid::joint_table)) reads.push_back(col(solid::joint_table, "corner_force"));
+  const char* E = solid::energy_table;
+  return {reads,
+          {col(N, "x"), col(N, "v"), col(N, "f"), col(E, "external_work"), col(E, "tet_work"),
+           col(E, "joint_work")}};
 }
 
 void NodeIntegrationSystem::run(const StepContext& ctx) {
@@ -40,20 +50,33 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
                                           nodes.span<double>("x"),
                                           nodes.span<double>("v"),
                                           nodes.span<double>("f"),
+                                          nodes.span<double>("mass"),
                                           nodes.span<double>("inv_mass"),
                                           nodes.span<uint8_t>("free"),
                                           nodes.span<int32_t>("held"),
                                           prescribed_};
   const Table& tets = store_.table(solid::tet_table);
-  const kernels::ForceSlots slots{tets.span<double>("corner_force"),
-                                  store_.table(solid::face_table).span<double>("corner_force"),
-                                  static_cast<int64_t>(4 * tets.size()), nodes.span<int32_t>("slots"),
-                                  store_.table(solid::slot_table).span<int32_t>("slot")};
+  const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
+  const Table& faces = store_.table(solid::face_table);
+  const int64_t tet_slots = 4 * static_cast<int64_t>(tets.size());
+  const int64_t joint_slots = joints ? 6 * static_cast<int64_t>(joints->size()) : 0;
+  const kernels::ForceSlots slots{
+      {tets.span<double>("corner_force"), joints ? joints->span<double>("corner_force") : std::span<double>{},
+       faces.span<double>("corner_force")},
+      {0, tet_slots, tet_slots + joint_slots,
+       tet_slots + joint_slots + 3 * static_cast<int64_t>(faces.size())},
+      nodes.span<int32_t>("slots"),
+      store_.table(solid::slot_table).span<int32_t>("slot")};
   parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {
-    block_non_finite_[begin / grain] = kernels::integrate_nodes(args, slots, begin, end);
+    blocks_[begin / grain] = kernels::integrate_nodes(args, slots, begin, end);
   });
-  non_finite_ = 0;
-  for (size_t b : block_non_finite_) non_finite_ += b;
+  kernels::NodeStepResult total;
+  for (const auto& b : blocks_) total += b;  // fixed block order: deterministic
+  non_finite_ = total.non_finite;
+  Table& energy = store_.table(solid::energy_table);
+  energy.span<double>("tet_work")[0] += total.work[0];
+  energy.span<double>("joint_work")[0] += total.work[1];
+  energy.span<double>("external_work")[0] += total.work[2];
 }
 
 }  // namespace rift

@@ -1,11 +1,13 @@
 #pragma once
 // The node pass: gathers every producer's corner forces, then advances velocities and positions
-// by central difference, holding constrained components at their prescribed velocity.
+// by central difference, holding constrained components at their prescribed velocity, and books the
+// work of internal and external forces over the step in the solid_energy table.
 #include <vector>
 
 #include "engine/core/table.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/schedule/system.hpp"
+#include "kernels/node_integration.hpp"
 
 namespace rift {
 
@@ -25,7 +27,7 @@ class NodeIntegrationSystem : public System {
   std::vector<SolidBoundarySpec> conditions_;
   std::array<double, 3> gravity_;
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
-  std::vector<size_t> block_non_finite_;
+  std::vector<kernels::NodeStepResult> blocks_;
   size_t non_finite_ = 0;
 };
 

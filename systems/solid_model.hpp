@@ -1,23 +1,39 @@
 #pragma once
 // The solid: builds its tables from a mesh and the scene's solid section, and owns the systems that
-// advance it (surface loads, tet forces, node integration). This first version keeps the mesh
-// continuous (tets share nodes); the fracture zone with per-tet nodes and joints builds on it.
+// advance it (surface loads, tet forces, joint forces, node integration). Inside the scene's fracture
+// zone every tet has its own nodes and 6-node joints tie neighbours together; outside it tets share
+// nodes and no joints exist. Without a fracture section the whole mesh is continuous.
+//
+// Member definitions are split by concern: solid_model.cpp (assembly, step limit, health, summary),
+// solid_model_setup.cpp (nodes, tets, materials, boundaries, force slots, mass), solid_model_joints.cpp
+// (joint table, joint materials, in-situ state) and solid_model_output.cpp (fields, metrics, logs).
 #include <memory>
 
 #include "engine/core/table.hpp"
+#include "engine/mesh/discontinuous_mesh.hpp"
 #include "engine/mesh/tet_mesh.hpp"
 #include "engine/model.hpp"
 #include "engine/scene/scene.hpp"
+#include "systems/joint_force_system.hpp"
 #include "systems/node_integration_system.hpp"
 #include "systems/surface_load_system.hpp"
 #include "systems/tet_force_system.hpp"
 
 namespace rift {
 
+// Energies of the solid at one instant [J]; see docs/architecture.md "Energy balance".
+struct SolidEnergies {
+  double kinetic = 0, elastic = 0, joint_stored = 0, damping = 0, fracture = 0, external_work = 0;
+  double balance_error() const {
+    return external_work - (kinetic + elastic + joint_stored + damping + fracture);
+  }
+};
+
 class SolidModel : public Model {
  public:
   // Throws rift::Error naming the scene key when the scene and the mesh disagree (unknown surface or
-  // region, tets without a material, an inverted tet in the input).
+  // region, tets without a material, an inverted tet in the input, a zone material without fracture
+  // properties, an in-situ stress beyond a joint's strength).
   SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec);
 
   std::string name() const override { return "solid"; }
@@ -27,26 +43,41 @@ class SolidModel : public Model {
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;
+  void write_logs(const std::filesystem::path& dir) const override;
+
+  SolidEnergies energies() const;
+  size_t joint_count() const;
+  size_t broken_joint_count() const;
 
  private:
-  void build_nodes_and_tets(const TetMesh& mesh);
+  void build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh& mesh);
   void assign_materials(const TetMesh& mesh);
-  void apply_boundaries(const TetMesh& mesh);
+  std::vector<uint8_t> fracture_zone(const TetMesh& mesh) const;
+  void apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& mesh);
+  void build_joints(const DiscontinuousMesh& dm);
+  void set_joint_initial_state();
   void build_force_slots();
   void compute_mass_and_stable_dt();
+  void create_bookkeeping_tables();
+  std::optional<std::string> check_energy(const StepContext& after);
 
   Store& store_;
   SolidSpec spec_;
+  std::array<double, 6> initial_stress_{};
   std::vector<kernels::TetMaterial> tet_materials_;
+  std::vector<kernels::JointMaterial> joint_materials_;
   std::vector<SolidBoundarySpec> velocity_conditions_, load_conditions_;
-  double stable_dt_ = 0.0;
+  double stable_dt_ = 0.0, tet_stable_dt_ = 0.0, joint_stable_dt_ = 0.0;
   int64_t critical_tet_ = -1;
+  size_t zone_tets_ = 0;
+  double largest_energy_ = 0.0,
+         energy_floor_ = 0.0;  // largest energy scale seen so far, for the energy guard
   std::unique_ptr<SurfaceLoadSystem> loads_;
   std::unique_ptr<TetForceSystem> tet_forces_;
+  std::unique_ptr<JointForceSystem> joint_forces_;
   std::unique_ptr<NodeIntegrationSystem> integration_;
   // Output scratch, reused between outputs.
-  std::vector<double> displacement_, principal_;
-  std::vector<int32_t> region_;
+  std::vector<double> displacement_, principal_, reaction_;
 };
 
 }  // namespace rift

@@ -7,16 +7,28 @@ namespace rift::solid {
 
 inline constexpr const char* node_table = "solid_node";
 inline constexpr const char* tet_table = "solid_tet";
+inline constexpr const char* joint_table = "solid_joint";
 inline constexpr const char* face_table = "solid_load_face";
 inline constexpr const char* slot_table = "solid_force_slot";
+inline constexpr const char* event_table = "solid_fracture_event";
+inline constexpr const char* energy_table = "solid_energy";
 
 // solid_node: x0 (3, reference position), x (3), v (3, at t - dt/2), f (3, total force of the last step),
-// mass (1), inv_mass (1), free (u8 x3), held (i32, velocity condition or -1), slots (i32 x2: [begin, end) in
-// solid_force_slot)
-// solid_tet: nodes (i32 x4), dm_inv (9), volume0 (1), material (i32), region (i32),
-//            corner_force (12), stress (6), energy (1)
+// mass (1), inv_mass (1), free (u8 x3), held (i32 x3, velocity condition per component or -1), slots (i32 x2:
+// [begin, end) in solid_force_slot) solid_tet: nodes (i32 x4), dm_inv (9), volume0 (1), material (i32),
+// region (i32),
+//            corner_force (12), stress (6), energy (1), viscous_power (1)
+// solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),
+//            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear), corner_force (18),
+//            opening, slip, damage, stored_energy (1 each), initial_offset (3, in-situ state; 0 without one)
 // solid_load_face: nodes (i32 x3), load (i32), corner_force (9)
-// solid_force_slot: slot (i32): the corner-force slots of every node, grouped by node
+// solid_force_slot: slot (i32): the corner-force slots of every node, grouped by node: tet corners
+//            [0, 4 T), then joint corners [4 T, 4 T + 6 J), then loaded-face corners
+// solid_fracture_event: one row per broken joint, in the order they broke: step (i64), time, joint (i32),
+//            mode (u8, as broken), centroid (3), normal (3), area
+// solid_energy: one row of running integrals [J]: external_work (loads, gravity, prescribed motion),
+//            tet_work and joint_work (work done by those forces on the nodes), damping (viscous
+//            dissipation), joint_energy0 (joint stored energy at t = 0, the in-situ state)
 
 inline std::string col(const char* table, const char* column) {
   return std::string(table) + "." + column;

@@ -5,8 +5,9 @@
 
 namespace rift {
 
-SurfaceLoadSystem::SurfaceLoadSystem(Store& store, std::vector<SolidBoundarySpec> loads)
-    : store_(store), specs_(std::move(loads)), values_(specs_.size()) {}
+SurfaceLoadSystem::SurfaceLoadSystem(Store& store, std::vector<SolidBoundarySpec> loads,
+                                     std::array<double, 6> initial_stress)
+    : store_(store), specs_(std::move(loads)), initial_stress_(initial_stress), values_(specs_.size()) {}
 
 Access SurfaceLoadSystem::access() const {
   using solid::col;
@@ -23,6 +24,8 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
     L = {};
     if (s.kind == SolidBoundarySpec::Kind::pressure)
       L.pressure = scale;
+    else if (s.kind == SolidBoundarySpec::Kind::in_situ)
+      for (int c = 0; c < 6; ++c) L.stress[c] = initial_stress_[c] * scale;
     else
       for (int c = 0; c < 3; ++c) L.traction[c] = s.direction[c] * scale;
   }

@@ -1,6 +1,7 @@
 #pragma once
-// Pressure and traction on named surfaces, with time functions from the scene. Writes each loaded
-// face's corner forces; the node pass gathers them.
+// Pressure, traction and in-situ stress on named surfaces, with time functions from the scene. Writes
+// each loaded face's corner forces; the node pass gathers them.
+#include <array>
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -13,7 +14,8 @@ namespace rift {
 class SurfaceLoadSystem : public System {
  public:
   // loads[i] is the scene's boundary condition behind load index i of solid_load_face.load.
-  SurfaceLoadSystem(Store& store, std::vector<SolidBoundarySpec> loads);
+  // initial_stress: the tensor an in_situ boundary applies (zero when the scene has none).
+  SurfaceLoadSystem(Store& store, std::vector<SolidBoundarySpec> loads, std::array<double, 6> initial_stress);
   std::string name() const override { return "surface_loads"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
@@ -21,6 +23,7 @@ class SurfaceLoadSystem : public System {
  private:
   Store& store_;
   std::vector<SolidBoundarySpec> specs_;
+  std::array<double, 6> initial_stress_;
   std::vector<kernels::FaceLoad> values_;  // evaluated each step, sized once
 };
 

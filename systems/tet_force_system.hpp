@@ -1,7 +1,7 @@
 #pragma once
-// Internal forces of the tetrahedra (compressible neo-Hookean + viscous damping, kernels/tet_force).
-// Reads node positions and velocities, writes each tet's corner forces, stress and elastic energy.
-#include <atomic>
+// Internal forces of the tetrahedra (compressible neo-Hookean + viscous damping + in-situ stress,
+// kernels/tet_forces). Reads node positions and velocities, writes each tet's corner forces, stress,
+// elastic energy and viscous power, and books the damping dissipation of the step in solid_energy.
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -12,7 +12,9 @@ namespace rift {
 
 class TetForceSystem : public System {
  public:
-  TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials);
+  // initial_stress: 6 per material (empty: none).
+  TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials,
+                 std::vector<double> initial_stress);
   std::string name() const override { return "tet_forces"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
@@ -22,9 +24,14 @@ class TetForceSystem : public System {
   int64_t first_inverted() const { return first_inverted_; }
 
  private:
+  struct Block {
+    kernels::TetForceStatus status;
+    double viscous_power = 0.0;
+  };
   Store& store_;
   std::vector<kernels::TetMaterial> materials_;
-  std::vector<kernels::TetForceStatus> block_status_;  // one per block, sized once
+  std::vector<double> initial_stress_;
+  std::vector<Block> blocks_;  // one per block, sized once
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;
 };

@@ -7,7 +7,8 @@ namespace rift {
 namespace {
 
 // SolidBoundarySpec::Kind order.
-constexpr std::array<std::string_view, 4> kBoundaryTypes{"fixed", "velocity", "traction", "pressure"};
+constexpr std::array<std::string_view, 5> kBoundaryTypes{"fixed", "velocity", "traction", "pressure",
+                                                         "in_situ"};
 constexpr std::array<std::string_view, 3> kComponents{"x", "y", "z"};
 
 MaterialSpec read_material(MapReader& m) {
@@ -18,6 +19,12 @@ MaterialSpec read_material(MapReader& m) {
   mat.young = m.real("young", positive("Pa"), std::nullopt);
   mat.poisson = m.real("poisson", RealRule{"", 0.0, 0.5, false, true}, std::nullopt);
   mat.damping = m.real("damping", RealRule{"", 0.0, 1.0, false, false}, 0.0);
+  if (m.has("fracture")) {
+    MapReader f = m.section("fracture", false);
+    mat.fracture = read_fracture_material(f, mat.young);
+  } else {
+    m.declare("fracture");
+  }
   m.finish();
   return mat;
 }
@@ -53,6 +60,10 @@ SolidBoundarySpec read_boundary(MapReader& b) {
     b.forbid("value", for_type);
   } else if (bc.kind == Kind::pressure) {
     bc.function = b.time_function("value", "Pa", std::nullopt);
+  } else if (bc.kind == Kind::in_situ) {
+    TimeFunction one;
+    one.value = 1.0;
+    bc.function = b.time_function("value", "", one);  // dimensionless: scales initial_stress . n
   } else {
     TimeFunction one;
     one.value = 1.0;
@@ -82,7 +93,25 @@ SolidSpec read_solid_section(MapReader& sec) {
   auto materials = sec.section_list("materials", 1);
   for (auto& m : materials) solid.materials.push_back(read_material(m));
   check_unique_names(sec, materials, solid.materials);
-  for (auto& b : sec.section_list("boundaries", 0)) solid.boundaries.push_back(read_boundary(b));
+  auto boundaries = sec.section_list("boundaries", 0);
+  for (auto& b : boundaries) solid.boundaries.push_back(read_boundary(b));
+  if (sec.has("fracture")) {
+    MapReader f = sec.section("fracture", false);
+    solid.fracture = read_fracture_section(f);
+  } else {
+    sec.declare("fracture");
+  }
+  if (sec.has("initial_stress")) {
+    MapReader s = sec.section("initial_stress", false);
+    solid.initial_stress = read_initial_stress_section(s);
+  } else {
+    sec.declare("initial_stress");
+  }
+  for (size_t i = 0; i < boundaries.size(); ++i)
+    if (solid.boundaries[i].kind == SolidBoundarySpec::Kind::in_situ && !solid.initial_stress &&
+        boundaries[i].ok("type"))
+      boundaries[i].error("type", "in_situ only with a solid.initial_stress section",
+                          "add solid.initial_stress, or use traction/pressure");
   sec.finish();
   return solid;
 }

@@ -132,12 +132,40 @@ void emit_material(Lines& o, const MaterialSpec& m) {
   o.line(3, "young", yaml_real(m.young));
   o.line(3, "poisson", yaml_real(m.poisson));
   o.line(3, "damping", yaml_real(m.damping));
+  if (!m.fracture) return;
+  const FractureMaterialSpec& f = *m.fracture;
+  o.line(3, "fracture");
+  o.line(4, "tensile_strength", yaml_real(f.tensile_strength));
+  o.line(4, "cohesion", yaml_real(f.cohesion));
+  o.line(4, "friction_angle", yaml_real(f.friction_angle));
+  o.line(4, "residual_friction", yaml_real(f.residual_friction));
+  o.line(4, "G_I", yaml_real(f.G_I));
+  o.line(4, "G_II", yaml_real(f.G_II));
+  o.line(4, "penalty", yaml_real(f.penalty));
+}
+
+void emit_fracture(Lines& o, const FractureSpec& f) {
+  std::string regions;
+  for (const auto& r : f.regions) regions += (regions.empty() ? "" : ", ") + quoted(r);
+  o.line(1, "fracture");
+  o.line(2, "regions", "[" + regions + "]");
+  if (f.box_min) o.line(2, "box_min", vec3(*f.box_min));
+  if (f.box_max) o.line(2, "box_max", vec3(*f.box_max));
+  o.line(2, "integration_points", std::to_string(f.integration_points));
+  o.line(2, "softening", f.y_compatible ? "y_compatible" : "energy_exact");
+}
+
+void emit_initial_stress(Lines& o, const InitialStressSpec& s) {
+  o.line(1, "initial_stress");
+  o.line(2, "principal", vec3(s.principal));
+  o.line(2, "direction_1", vec3(s.direction_1));
+  o.line(2, "direction_2", vec3(s.direction_2));
 }
 
 // Only the keys that apply to the boundary's type, as the reader forbids the others.
 void emit_boundary(Lines& o, const SolidBoundarySpec& b) {
   using Kind = SolidBoundarySpec::Kind;
-  static constexpr const char* kTypes[] = {"fixed", "velocity", "traction", "pressure"};
+  static constexpr const char* kTypes[] = {"fixed", "velocity", "traction", "pressure", "in_situ"};
   o.item(2, "surface", quoted(b.surface));
   o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
   if (b.kind == Kind::fixed || b.kind == Kind::velocity) {
@@ -157,6 +185,8 @@ void emit_solid(Lines& o, const SolidSpec& s) {
   for (const auto& m : s.materials) emit_material(o, m);
   o.line(1, "boundaries", s.boundaries.empty() ? "[]" : "");
   for (const auto& b : s.boundaries) emit_boundary(o, b);
+  if (s.fracture) emit_fracture(o, *s.fracture);
+  if (s.initial_stress) emit_initial_stress(o, *s.initial_stress);
 }
 
 void emit_output(Lines& o, const OutputSpec& out) {

@@ -3,6 +3,7 @@
 // defaults. Every run, test and benchmark builds its world from one of these. SI units throughout.
 // The YAML layout, units, defaults and ranges are documented in docs/scene-format.md.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -51,6 +52,17 @@ struct MeshSpec {
   double scale = 1.0;                        // multiplies file coordinates (1e-3 for a mesh drawn in mm)
 };
 
+// Joint (cohesive) properties of a material: the Munjiza law with Mohr-Coulomb and a tension cut-off
+// (docs/reference femdem.md 1b). A joint between two different materials takes the weaker value of each.
+struct FractureMaterialSpec {
+  double tensile_strength = 0.0;   // f_t [Pa]
+  double cohesion = 0.0;           // c [Pa]
+  double friction_angle = 0.0;     // phi [degrees], Mohr-Coulomb envelope in compression
+  double residual_friction = 0.0;  // mu_res of a fully softened point in compression [-]
+  double G_I = 0.0, G_II = 0.0;    // fracture energies [J/m^2]
+  double penalty = 0.0;            // p [Pa]; the joint stiffness per unit area is p / h
+};
+
 struct MaterialSpec {
   std::string name;
   std::vector<std::string> regions;  // mesh regions it applies to; {"all"} for every tet
@@ -58,10 +70,45 @@ struct MaterialSpec {
   double young = 0.0;                // Young's modulus [Pa]
   double poisson = 0.0;              // [-], 0 <= nu < 0.5
   double damping = 0.0;              // viscous damping as a fraction of critical at the element scale [-]
+  std::optional<FractureMaterialSpec> fracture;  // required for materials inside the fracture zone
+};
+
+// Where joints exist: tets of the listed regions whose centroid lies in the box (if one is given).
+struct FractureSpec {
+  std::vector<std::string> regions{"all"};
+  std::optional<std::array<double, 3>> box_min, box_max;  // both or neither [m]
+  int integration_points = 3;                             // 3 or 7 per joint
+  bool y_compatible = false;  // softening length 3 G / f (Y code) instead of the energy-exact one
+};
+
+// A uniform in-situ stress, present at t = 0 in every tet and joint (compression negative).
+struct InitialStressSpec {
+  std::array<double, 3> principal{};           // principal stresses [Pa]
+  std::array<double, 3> direction_1{1, 0, 0};  // direction of principal[0]; need not be unit length
+  std::array<double, 3> direction_2{0, 1, 0};  // of principal[1], orthogonal to direction_1
+  // Cauchy tensor xx yy zz xy yz zx: sum_k principal[k] e_k e_k^T with e_3 = e_1 x e_2 (unit vectors;
+  // the reader checks that the two directions are orthogonal).
+  std::array<double, 6> tensor() const {
+    std::array<double, 3> e[3];
+    auto unit = [](std::array<double, 3> v) {
+      const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      return std::array<double, 3>{v[0] / n, v[1] / n, v[2] / n};
+    };
+    e[0] = unit(direction_1);
+    e[1] = unit(direction_2);
+    e[2] = {e[0][1] * e[1][2] - e[0][2] * e[1][1], e[0][2] * e[1][0] - e[0][0] * e[1][2],
+            e[0][0] * e[1][1] - e[0][1] * e[1][0]};
+    static constexpr int kI[6] = {0, 1, 2, 0, 1, 2}, kJ[6] = {0, 1, 2, 1, 2, 0};
+    std::array<double, 6> s{};
+    for (int c = 0; c < 6; ++c)
+      for (int k = 0; k < 3; ++k) s[c] += principal[k] * e[k][kI[c]] * e[k][kJ[c]];
+    return s;
+  }
 };
 
 struct SolidBoundarySpec {
-  enum class Kind { fixed, velocity, traction, pressure };
+  // in_situ: the traction initial_stress . n on the surface (outward n), scaled by `function`.
+  enum class Kind { fixed, velocity, traction, pressure, in_situ };
   Kind kind = Kind::fixed;
   std::string surface;                               // mesh surface name
   std::array<bool, 3> components{true, true, true};  // fixed / velocity: which axes are constrained
@@ -72,7 +119,9 @@ struct SolidBoundarySpec {
 struct SolidSpec {
   std::vector<MaterialSpec> materials;
   std::vector<SolidBoundarySpec> boundaries;
-  std::array<double, 3> gravity{};  // [m/s^2]
+  std::array<double, 3> gravity{};                  // [m/s^2]
+  std::optional<FractureSpec> fracture;             // absent: continuous mesh, no joints
+  std::optional<InitialStressSpec> initial_stress;  // absent: stress-free start
 };
 
 struct TimeSpec {

@@ -14,6 +14,10 @@ TimeSpec read_time_section(MapReader& sec);
 // Relative mesh.file paths are resolved against `base_dir` (the scene file's folder).
 MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir);
 SolidSpec read_solid_section(MapReader& sec);
+// Parts of the solid section (read_fracture_keys.cpp).
+FractureMaterialSpec read_fracture_material(MapReader& sec, double young);
+FractureSpec read_fracture_section(MapReader& sec);
+InitialStressSpec read_initial_stress_section(MapReader& sec);
 OutputSpec read_output_section(MapReader& sec);
 CheckpointSpec read_checkpoint_section(MapReader& sec);
 

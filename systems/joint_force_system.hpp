@@ -1,0 +1,43 @@
+#pragma once
+// Joint (cohesive) forces between the tets of the fracture zone, and fracture events. Reads current
+// positions, writes each joint's corner forces, damage history and state; every joint that breaks in
+// the step becomes a row of solid_fracture_event (time, centroid, normal, mode, area), in joint order,
+// so the log is the same on any thread count. Broken joints write zero force from then on; their two
+// tets are the contact model's to handle.
+#include <atomic>
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/schedule/system.hpp"
+#include "kernels/joint_forces.hpp"
+
+namespace rift {
+
+class JointForceSystem : public System {
+ public:
+  JointForceSystem(Store& store, std::vector<kernels::JointMaterial> materials, int integration_points,
+                   kernels::Softening softening);
+  std::string name() const override { return "joint_forces"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+
+  const std::vector<kernels::JointMaterial>& materials() const { return materials_; }
+  const kernels::JointRule& rule() const { return *rule_; }
+  kernels::Softening softening() const { return softening_; }
+  size_t degenerate() const { return degenerate_; }  // joints with a collapsed mid-surface, last step
+  size_t short_softening() const { return short_softening_; }
+
+ private:
+  void record_events(const StepContext& ctx, size_t count);
+
+  Store& store_;
+  std::vector<kernels::JointMaterial> materials_;
+  const kernels::JointRule* rule_;
+  kernels::Softening softening_;
+  std::vector<kernels::JointStatus> blocks_;
+  std::vector<kernels::JointBreak> breaks_;  // one slot per joint: every joint can break at most once
+  std::atomic<size_t> break_count_{0};
+  size_t degenerate_ = 0, short_softening_ = 0;
+};
+
+}  // namespace rift

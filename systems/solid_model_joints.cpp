@@ -1,0 +1,134 @@
+// SolidModel set-up of the fracture zone: the joint table, joint materials per pair of tet materials,
+// the in-situ state of every joint, and the bookkeeping tables (fracture events, energy integrals).
+#include <cmath>
+#include <map>
+
+#include "engine/core/error.hpp"
+#include "kernels/joint_initial_state.hpp"
+#include "systems/solid_model.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+namespace {
+
+kernels::JointMaterial joint_material(const FractureMaterialSpec& f) {
+  return {f.penalty, f.tensile_strength, f.cohesion, std::tan(f.friction_angle * M_PI / 180.0), f.G_I,
+          f.G_II,    f.residual_friction};
+}
+
+// An interface between two materials is as weak as the weaker of them in every property.
+kernels::JointMaterial weaker(const kernels::JointMaterial& a, const kernels::JointMaterial& b) {
+  return {std::min(a.penalty, b.penalty),
+          std::min(a.tensile_strength, b.tensile_strength),
+          std::min(a.cohesion, b.cohesion),
+          std::min(a.tan_friction, b.tan_friction),
+          std::min(a.G_I, b.G_I),
+          std::min(a.G_II, b.G_II),
+          std::min(a.residual_friction, b.residual_friction)};
+}
+
+}  // namespace
+
+void SolidModel::build_joints(const DiscontinuousMesh& dm) {
+  const FractureSpec& f = *spec_.fracture;
+  const int points = f.integration_points;
+  Table& joints = store_.add_table(solid::joint_table);
+  joints.add<int32_t>("nodes", 6);
+  joints.add<int32_t>("tets", 2);
+  joints.add<int32_t>("material");
+  joints.add<double>("d_max", points);
+  joints.add<uint8_t>("broken");
+  joints.add<double>("corner_force", 18);
+  joints.add<double>("opening");
+  joints.add<double>("slip");
+  joints.add<double>("damage");
+  joints.add<double>("stored_energy");
+  joints.add<double>("initial_offset", 3);
+  joints.resize(dm.joints.size());
+  auto nodes = joints.span<int32_t>("nodes");
+  auto tets = joints.span<int32_t>("tets");
+  auto material = joints.span<int32_t>("material");
+  const auto tet_material = store_.table(solid::tet_table).span<const int32_t>("material");
+
+  // One joint material per distinct (material A, material B) pair, in order of first appearance.
+  std::map<std::pair<int32_t, int32_t>, int32_t> pair_index;
+  for (size_t j = 0; j < dm.joints.size(); ++j) {
+    for (int k = 0; k < 6; ++k) nodes[6 * j + k] = dm.joints[j][k];
+    const auto [a, b] = dm.joint_tets[j];
+    tets[2 * j] = a;
+    tets[2 * j + 1] = b;
+    const int32_t ma = tet_material[a], mb = tet_material[b];
+    const auto key = std::make_pair(std::min(ma, mb), std::max(ma, mb));
+    auto it = pair_index.find(key);
+    if (it == pair_index.end()) {
+      const auto& A = spec_.materials[key.first].fracture;
+      const auto& B = spec_.materials[key.second].fracture;
+      for (const int32_t m : {key.first, key.second})
+        if (!spec_.materials[m].fracture && dm.tet_in_zone[m == ma ? a : b])
+          throw Error("solid.materials[" + std::to_string(m) + "] ('" + spec_.materials[m].name +
+                      "') fills tets of the fracture zone (solid.fracture) but has no fracture properties; "
+                      "add solid.materials[" +
+                      std::to_string(m) +
+                      "].fracture with tensile_strength, cohesion, friction_angle, G_I and G_II");
+      const kernels::JointMaterial jm =
+          A && B ? weaker(joint_material(*A), joint_material(*B)) : joint_material(A ? *A : *B);
+      it = pair_index.emplace(key, static_cast<int32_t>(joint_materials_.size())).first;
+      joint_materials_.push_back(jm);
+    }
+    material[j] = it->second;
+  }
+  if (spec_.initial_stress) set_joint_initial_state();
+}
+
+// Every joint starts carrying the in-situ traction sigma0 . n: its two sides are offset so that the law
+// gives exactly that traction (kernels/joint_initial_state.hpp). Without this the joints would start
+// unloaded while the tets are stressed, and the mismatch would launch a wave at t = 0.
+void SolidModel::set_joint_initial_state() {
+  Table& joints = store_.table(solid::joint_table);
+  const auto x = store_.table(solid::node_table).span<const double>("x0");
+  const auto nodes = joints.span<const int32_t>("nodes");
+  const auto material = joints.span<const int32_t>("material");
+  auto offset = joints.span<double>("initial_offset");
+  const auto& S = initial_stress_;
+  const kernels::Softening rule =
+      spec_.fracture->y_compatible ? kernels::Softening::y_compatible : kernels::Softening::energy_exact;
+  const double Z = kernels::softening_integral();
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const double* p[3] = {&x[3 * nodes[6 * j]], &x[3 * nodes[6 * j + 1]], &x[3 * nodes[6 * j + 2]]};
+    double e[3][3], h = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      for (int c = 0; c < 3; ++c) e[i][c] = p[(i + 1) % 3][c] - p[i][c];
+      h = std::min(h, std::sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]));
+    }
+    double n[3] = {e[0][1] * (-e[2][2]) - e[0][2] * (-e[2][1]), e[0][2] * (-e[2][0]) - e[0][0] * (-e[2][2]),
+                   e[0][0] * (-e[2][1]) - e[0][1] * (-e[2][0])};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& c : n) c /= len;
+    const double t[3] = {S[0] * n[0] + S[3] * n[1] + S[5] * n[2], S[3] * n[0] + S[1] * n[1] + S[4] * n[2],
+                         S[5] * n[0] + S[4] * n[1] + S[2] * n[2]};
+    if (!kernels::joint_initial_offset(joint_materials_[material[j]], h, n, t, rule, Z, &offset[3 * j]))
+      throw Error("solid.initial_stress: the in-situ traction on joint " + std::to_string(j) + " at (" +
+                  std::to_string(p[0][0]) + ", " + std::to_string(p[0][1]) + ", " + std::to_string(p[0][2]) +
+                  ") m reaches its strength (tension above tensile_strength or shear above the Mohr-Coulomb "
+                  "envelope), so the rock would be broken before the run starts. Lower the in-situ "
+                  "deviatoric stress or raise the strengths of the zone's materials.");
+  }
+}
+
+void SolidModel::create_bookkeeping_tables() {
+  Table& events = store_.add_table(solid::event_table);
+  events.add<int64_t>("step");
+  events.add<double>("time");
+  events.add<int32_t>("joint");
+  events.add<uint8_t>("mode");
+  events.add<double>("centroid", 3);
+  events.add<double>("normal", 3);
+  events.add<double>("area");
+  Table& energy = store_.add_table(solid::energy_table);
+  for (const char* c : {"external_work", "tet_work", "joint_work", "damping", "joint_energy0"})
+    energy.add<double>(c);
+  energy.resize(1);
+}
+
+}  // namespace rift

@@ -1,0 +1,178 @@
+// SolidModel outputs: field grids (tets, and joints as wedge cells), time-series metrics with the energy
+// balance, and the fracture log.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/io/atomic_file.hpp"
+#include "systems/solid_model.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+namespace {
+
+// Symmetric 3x3 eigenvalues (descending) by the trigonometric formula: exact for a symmetric matrix,
+// adequate at output time. s = xx yy zz xy yz zx.
+void principal_values(const double* s, double* out) {
+  const double p1 = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  const double q = (s[0] + s[1] + s[2]) / 3.0;
+  if (p1 <= 1e-30 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + 1e-300) {
+    double d[3] = {s[0], s[1], s[2]};
+    std::sort(d, d + 3, std::greater<>());
+    std::copy(d, d + 3, out);
+    return;
+  }
+  const double p2 = (s[0] - q) * (s[0] - q) + (s[1] - q) * (s[1] - q) + (s[2] - q) * (s[2] - q) + 2 * p1;
+  const double p = std::sqrt(p2 / 6.0);
+  const double b[6] = {(s[0] - q) / p, (s[1] - q) / p, (s[2] - q) / p, s[3] / p, s[4] / p, s[5] / p};
+  const double det = b[0] * (b[1] * b[2] - b[4] * b[4]) - b[3] * (b[3] * b[2] - b[4] * b[5]) +
+                     b[5] * (b[3] * b[4] - b[1] * b[5]);
+  const double r = std::clamp(det / 2.0, -1.0, 1.0);
+  const double phi = std::acos(r) / 3.0;
+  out[0] = q + 2 * p * std::cos(phi);
+  out[2] = q + 2 * p * std::cos(phi + 2.0 * M_PI / 3.0);
+  out[1] = 3 * q - out[0] - out[2];
+}
+
+bool wants(const std::vector<std::string>& fields, const char* name) {
+  return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
+}
+
+}  // namespace
+
+void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
+  const Table& nodes = store_.table(solid::node_table);
+  const Table& tets = store_.table(solid::tet_table);
+  const auto x = nodes.span<double>("x");
+  const auto x0 = nodes.span<double>("x0");
+  displacement_.resize(x.size());
+  for (size_t i = 0; i < x.size(); ++i) displacement_[i] = x[i] - x0[i];
+  const auto stress = tets.span<double>("stress");
+  principal_.resize(3 * tets.size());
+  for (size_t e = 0; e < tets.size(); ++e) principal_values(&stress[6 * e], &principal_[3 * e]);
+
+  XdmfGrid g{"solid",
+             Topology::tetrahedron,
+             x.data(),
+             nodes.size(),
+             tets.span<int32_t>("nodes").data(),
+             tets.size(),
+             0,
+             true,
+             {}};
+  auto node_field = [&](const char* name, const double* data) {
+    if (wants(fields, name))
+      g.fields.push_back({name, Center::node, 3, ElementType::f64, data, nodes.size()});
+  };
+  auto cell_field = [&](XdmfGrid& grid, const char* name, int components, ElementType type,
+                        const void* data) {
+    if (wants(fields, name))
+      grid.fields.push_back({name, Center::cell, components, type, data, grid.cell_count});
+  };
+  node_field("displacement", displacement_.data());
+  node_field("velocity", nodes.span<double>("v").data());
+  node_field("force", nodes.span<double>("f").data());
+  cell_field(g, "stress", 6, ElementType::f64, stress.data());
+  cell_field(g, "principal_stress", 3, ElementType::f64, principal_.data());
+  cell_field(g, "energy", 1, ElementType::f64, tets.span<double>("energy").data());
+  cell_field(g, "region", 1, ElementType::i32, tets.span<int32_t>("region").data());
+  cell_field(g, "material", 1, ElementType::i32, tets.span<int32_t>("material").data());
+  grids.push_back(std::move(g));
+  if (!store_.has(solid::joint_table)) return;
+
+  // Joints as wedge cells on the same points: corners 0-2 (side A) and 3-5 (side B) are VTK_WEDGE's two
+  // triangles, so a joint opens visibly in ParaView. Topology is fixed (broken joints stay, flagged).
+  const Table& joints = store_.table(solid::joint_table);
+  XdmfGrid j{"joints",
+             Topology::wedge,
+             x.data(),
+             nodes.size(),
+             joints.span<int32_t>("nodes").data(),
+             joints.size(),
+             0,
+             true,
+             {}};
+  cell_field(j, "damage", 1, ElementType::f64, joints.span<double>("damage").data());
+  cell_field(j, "opening", 1, ElementType::f64, joints.span<double>("opening").data());
+  cell_field(j, "slip", 1, ElementType::f64, joints.span<double>("slip").data());
+  cell_field(j, "broken", 1, ElementType::u8, joints.span<uint8_t>("broken").data());
+  cell_field(j, "energy", 1, ElementType::f64, joints.span<double>("stored_energy").data());
+  grids.push_back(std::move(j));
+}
+
+SolidEnergies SolidModel::energies() const {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto v = nodes.span<const double>("v");
+  const auto m = nodes.span<const double>("mass");
+  SolidEnergies e;
+  for (size_t n = 0; n < nodes.size(); ++n)
+    e.kinetic +=
+        0.5 * m[n] * (v[3 * n] * v[3 * n] + v[3 * n + 1] * v[3 * n + 1] + v[3 * n + 2] * v[3 * n + 2]);
+  for (double w : store_.table(solid::tet_table).span<const double>("energy")) e.elastic += w;
+  const Table& book = store_.table(solid::energy_table);
+  e.external_work = book.span<const double>("external_work")[0];
+  e.damping = book.span<const double>("damping")[0];
+  if (store_.has(solid::joint_table)) {
+    double stored = 0.0;
+    for (double w : store_.table(solid::joint_table).span<const double>("stored_energy")) stored += w;
+    e.joint_stored = stored - book.span<const double>("joint_energy0")[0];
+    // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took.
+    e.fracture = -book.span<const double>("joint_work")[0] - e.joint_stored;
+  }
+  return e;
+}
+
+void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>>& row) {
+  const SolidEnergies e = energies();
+  row.emplace_back("solid_kinetic_energy", e.kinetic);
+  row.emplace_back("solid_elastic_energy", e.elastic);
+  row.emplace_back("solid_joint_energy", e.joint_stored);
+  row.emplace_back("solid_damping_dissipation", e.damping);
+  row.emplace_back("solid_fracture_dissipation", e.fracture);
+  row.emplace_back("solid_external_work", e.external_work);
+  row.emplace_back("solid_energy_balance_error", e.balance_error());
+  row.emplace_back("solid_broken_joints", static_cast<double>(broken_joint_count()));
+  // Support reactions per surface with prescribed motion: minus the force the body exerts on the held
+  // components (quasi-static: the inertia of the held nodes is left out). The load a platen applies.
+  std::vector<std::string> surfaces;
+  std::vector<size_t> slot(velocity_conditions_.size());
+  for (size_t i = 0; i < velocity_conditions_.size(); ++i) {
+    const auto it = std::find(surfaces.begin(), surfaces.end(), velocity_conditions_[i].surface);
+    slot[i] = static_cast<size_t>(it - surfaces.begin());
+    if (it == surfaces.end()) surfaces.push_back(velocity_conditions_[i].surface);
+  }
+  reaction_.assign(3 * surfaces.size(), 0.0);
+  const Table& nodes = store_.table(solid::node_table);
+  const auto held = nodes.span<const int32_t>("held");
+  const auto f = nodes.span<const double>("f");
+  for (size_t i = 0; i < held.size(); ++i)
+    if (held[i] >= 0) reaction_[3 * slot[held[i]] + i % 3] -= f[i];
+  for (size_t k = 0; k < surfaces.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      row.emplace_back("solid_reaction_" + surfaces[k] + "_" + "xyz"[c], reaction_[3 * k + c]);
+}
+
+// fractures.csv: one line per broken joint, in the order they broke (joint order within a step).
+void SolidModel::write_logs(const std::filesystem::path& dir) const {
+  if (!store_.has(solid::joint_table)) return;
+  const Table& ev = store_.table(solid::event_table);
+  const auto step = ev.span<const int64_t>("step");
+  const auto time = ev.span<const double>("time");
+  const auto joint = ev.span<const int32_t>("joint");
+  const auto mode = ev.span<const uint8_t>("mode");
+  const auto c = ev.span<const double>("centroid");
+  const auto n = ev.span<const double>("normal");
+  const auto area = ev.span<const double>("area");
+  const auto tets = store_.table(solid::joint_table).span<const int32_t>("tets");
+  std::string csv = "step,time,joint,tet_a,tet_b,mode,x,y,z,nx,ny,nz,area\n";
+  for (size_t r = 0; r < ev.size(); ++r)
+    csv += fmt::format("{},{:.17g},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+                       step[r], time[r], joint[r], tets[2 * joint[r]], tets[2 * joint[r] + 1],
+                       mode[r] == 1 ? "tensile" : "shear", c[3 * r], c[3 * r + 1], c[3 * r + 2], n[3 * r],
+                       n[3 * r + 1], n[3 * r + 2], area[r]);
+  write_text_atomic(dir / "fractures.csv", csv);
+}
+
+}  // namespace rift

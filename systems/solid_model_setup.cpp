@@ -1,0 +1,277 @@
+// SolidModel set-up: nodes and tets from the (possibly discontinuous) mesh, materials, boundary
+// conditions, force slots, lumped mass and the stable step.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "engine/core/error.hpp"
+#include "kernels/stable_step.hpp"
+#include "kernels/tet_forces.hpp"
+#include "systems/solid_model.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "(none)" : out;
+}
+
+double max_face_area(std::span<const double> x, const int32_t* t) {
+  double best = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double* a = &x[3 * t[(k + 1) % 4]];
+    const double* b = &x[3 * t[(k + 2) % 4]];
+    const double* c = &x[3 * t[(k + 3) % 4]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                 w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    best = std::max(best, 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+  }
+  return best;
+}
+
+// Which regions a list of names (or "all") selects; `key` names the list in errors.
+std::vector<bool> select_regions(const TetMesh& mesh, const std::vector<std::string>& names,
+                                 const std::string& key) {
+  std::vector<bool> applies(std::max<size_t>(mesh.region_names.size(), 1), false);
+  for (const auto& r : names) {
+    if (r == "all")
+      std::fill(applies.begin(), applies.end(), true);
+    else if (int32_t i = mesh.region_index(r); i >= 0)
+      applies[i] = true;
+    else
+      throw Error(key + ": the mesh has no region '" + r + "'; its regions are: " + join(mesh.region_names) +
+                  " (or use 'all')");
+  }
+  return applies;
+}
+
+}  // namespace
+
+std::vector<uint8_t> SolidModel::fracture_zone(const TetMesh& mesh) const {
+  std::vector<uint8_t> zone(mesh.tets.size(), 0);
+  if (!spec_.fracture) return zone;
+  const FractureSpec& f = *spec_.fracture;
+  const auto applies = select_regions(mesh, f.regions, "solid.fracture.regions");
+  for (size_t e = 0; e < mesh.tets.size(); ++e) {
+    if (!applies[mesh.tet_region.empty() ? 0 : mesh.tet_region[e]]) continue;
+    bool inside = true;
+    if (f.box_min)
+      for (int c = 0; c < 3; ++c) {
+        double centroid = 0.0;
+        for (int32_t v : mesh.tets[e]) centroid += 0.25 * mesh.nodes[v][c];
+        inside = inside && centroid >= (*f.box_min)[c] && centroid <= (*f.box_max)[c];
+      }
+    zone[e] = inside ? 1 : 0;
+  }
+  return zone;
+}
+
+void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh& mesh) {
+  Table& nodes = store_.add_table(solid::node_table);
+  nodes.add<double>("x0", 3);
+  nodes.add<double>("x", 3);
+  nodes.add<double>("v", 3);
+  nodes.add<double>("f", 3);
+  nodes.add<double>("mass");
+  nodes.add<double>("inv_mass");
+  nodes.add<uint8_t>("free", 3);
+  nodes.add<int32_t>("held", 3);
+  nodes.add<int32_t>("slots", 2);
+  nodes.resize(dm.nodes.size());
+  auto x0 = nodes.span<double>("x0");
+  for (size_t n = 0; n < dm.nodes.size(); ++n)
+    for (int c = 0; c < 3; ++c) x0[3 * n + c] = dm.nodes[n][c];
+  std::copy(x0.begin(), x0.end(), nodes.span<double>("x").begin());
+  std::fill(nodes.span<uint8_t>("free").begin(), nodes.span<uint8_t>("free").end(), uint8_t{1});
+  std::fill(nodes.span<int32_t>("held").begin(), nodes.span<int32_t>("held").end(), -1);
+
+  Table& tets = store_.add_table(solid::tet_table);
+  tets.add<int32_t>("nodes", 4);
+  tets.add<double>("dm_inv", 9);
+  tets.add<double>("volume0");
+  tets.add<int32_t>("material");
+  tets.add<int32_t>("region");
+  tets.add<double>("corner_force", 12);
+  tets.add<double>("stress", 6);
+  tets.add<double>("energy");
+  tets.add<double>("viscous_power");
+  tets.resize(dm.tets.size());
+  auto conn = tets.span<int32_t>("nodes");
+  auto region = tets.span<int32_t>("region");
+  for (size_t e = 0; e < dm.tets.size(); ++e) {
+    for (int k = 0; k < 4; ++k) conn[4 * e + k] = dm.tets[e][k];
+    region[e] = mesh.tet_region.empty() ? 0 : mesh.tet_region[e];
+  }
+  const size_t inverted = kernels::tet_prepare(x0, conn, tets.span<double>("dm_inv"),
+                                               tets.span<double>("volume0"), 0, tets.size());
+  if (inverted > 0)
+    throw Error(
+        "mesh: " + std::to_string(inverted) +
+        " tetrahedra have zero or negative volume; the mesh reader should have reoriented them, so the "
+        "mesh is degenerate. Regenerate it or check the file.");
+}
+
+void SolidModel::assign_materials(const TetMesh& mesh) {
+  Table& tets = store_.table(solid::tet_table);
+  auto material = tets.span<int32_t>("material");
+  auto region = tets.span<const int32_t>("region");
+  std::fill(material.begin(), material.end(), -1);
+  for (size_t m = 0; m < spec_.materials.size(); ++m) {
+    const auto applies = select_regions(mesh, spec_.materials[m].regions,
+                                        "solid.materials[" + std::to_string(m) + "].regions");
+    for (size_t e = 0; e < tets.size(); ++e)
+      if (material[e] < 0 && applies[region[e]]) material[e] = static_cast<int32_t>(m);
+  }
+  for (size_t e = 0; e < tets.size(); ++e)
+    if (material[e] < 0)
+      throw Error("solid.materials: tet " + std::to_string(e) + " in region '" +
+                  mesh.region_names[region[e]] +
+                  "' has no material; list that region in a material's regions (or use 'all')");
+}
+
+void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& mesh) {
+  Table& nodes = store_.table(solid::node_table);
+  auto free = nodes.span<uint8_t>("free");
+  auto held = nodes.span<int32_t>("held");
+  Table& faces = store_.add_table(solid::face_table);
+  faces.add<int32_t>("nodes", 3);
+  faces.add<int32_t>("load");
+  faces.add<double>("corner_force", 9);
+
+  // Orient each loaded triangle outward: find its tet through the face and point away from the fourth node.
+  std::map<std::array<int32_t, 3>, std::array<int32_t, 4>> face_tet;
+  for (const auto& t : dm.tets)
+    for (int k = 0; k < 4; ++k) {
+      std::array<int32_t, 3> f{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]};
+      std::sort(f.begin(), f.end());
+      face_tet[f] = t;
+    }
+
+  std::vector<int32_t> face_nodes, face_load;
+  for (size_t b = 0; b < spec_.boundaries.size(); ++b) {
+    const SolidBoundarySpec& bc = spec_.boundaries[b];
+    const std::string key = "solid.boundaries[" + std::to_string(b) + "].surface";
+    const int32_t surface = mesh.surface_index(bc.surface);
+    if (surface < 0)
+      throw Error(key + ": the mesh has no surface '" + bc.surface +
+                  "'; its surfaces are: " + join(mesh.surface_names));
+    const bool is_velocity =
+        bc.kind == SolidBoundarySpec::Kind::fixed || bc.kind == SolidBoundarySpec::Kind::velocity;
+    const int32_t index =
+        static_cast<int32_t>(is_velocity ? velocity_conditions_.size() : load_conditions_.size());
+    (is_velocity ? velocity_conditions_ : load_conditions_).push_back(bc);
+    for (size_t t = 0; t < dm.triangles.size(); ++t) {
+      if (mesh.triangle_surface[t] != surface) continue;
+      const auto& tri = dm.triangles[t];
+      if (is_velocity) {
+        // Later conditions override earlier ones on shared nodes (edges, corners), component by component.
+        for (int32_t n : tri)
+          for (int c = 0; c < 3; ++c)
+            if (bc.components[c]) {
+              free[3 * n + c] = 0;
+              held[3 * n + c] = index;
+            }
+        continue;
+      }
+      std::array<int32_t, 3> key3 = tri;
+      std::sort(key3.begin(), key3.end());
+      auto it = face_tet.find(key3);
+      if (it == face_tet.end())
+        throw Error(key + ": a triangle of surface '" + bc.surface + "' is not a face of any tetrahedron");
+      const auto& tet = it->second;
+      int32_t apex = tet[0] + tet[1] + tet[2] + tet[3] - tri[0] - tri[1] - tri[2];
+      const auto& p0 = dm.nodes[tri[0]];
+      const auto& p1 = dm.nodes[tri[1]];
+      const auto& p2 = dm.nodes[tri[2]];
+      const auto& pa = dm.nodes[apex];
+      double a[3], c[3], d[3];
+      for (int i = 0; i < 3; ++i) a[i] = p1[i] - p0[i], c[i] = p2[i] - p0[i], d[i] = pa[i] - p0[i];
+      const double n[3] = {a[1] * c[2] - a[2] * c[1], a[2] * c[0] - a[0] * c[2], a[0] * c[1] - a[1] * c[0]};
+      const bool outward = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
+      face_nodes.insert(face_nodes.end(), {tri[0], outward ? tri[1] : tri[2], outward ? tri[2] : tri[1]});
+      face_load.push_back(index);
+    }
+  }
+  faces.resize(face_load.size());
+  std::copy(face_nodes.begin(), face_nodes.end(), faces.span<int32_t>("nodes").begin());
+  std::copy(face_load.begin(), face_load.end(), faces.span<int32_t>("load").begin());
+}
+
+void SolidModel::build_force_slots() {
+  // Each node lists the corner-force slots that act on it: 4 per tet, then 6 per joint, then 3 per loaded
+  // face. The order is fixed here, which fixes the floating-point sum in the node pass; the node pass
+  // relies on a node's slots being grouped by source (tets, joints, faces), which this order gives.
+  Table& nodes = store_.table(solid::node_table);
+  const auto tets = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto joints = store_.has(solid::joint_table)
+                          ? store_.table(solid::joint_table).span<const int32_t>("nodes")
+                          : std::span<const int32_t>{};
+  const auto faces = store_.table(solid::face_table).span<const int32_t>("nodes");
+  std::vector<int32_t> count(nodes.size() + 1, 0);
+  for (auto list : {tets, joints, faces})
+    for (int32_t n : list) ++count[n + 1];
+  for (size_t n = 0; n < nodes.size(); ++n) count[n + 1] += count[n];
+  Table& slots = store_.add_table(solid::slot_table);
+  slots.add<int32_t>("slot");
+  slots.resize(count.back());
+  auto slot = slots.span<int32_t>("slot");
+  auto range = nodes.span<int32_t>("slots");
+  std::vector<int32_t> next(count.begin(), count.end() - 1);
+  int32_t first = 0;
+  for (auto list : {tets, joints, faces}) {
+    for (size_t k = 0; k < list.size(); ++k) slot[next[list[k]]++] = first + static_cast<int32_t>(k);
+    first += static_cast<int32_t>(list.size());
+  }
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    range[2 * n] = count[n];
+    range[2 * n + 1] = count[n + 1];
+  }
+}
+
+void SolidModel::compute_mass_and_stable_dt() {
+  Table& nodes = store_.table(solid::node_table);
+  const Table& tets = store_.table(solid::tet_table);
+  const auto conn = tets.span<int32_t>("nodes");
+  const auto vol = tets.span<double>("volume0");
+  const auto material = tets.span<int32_t>("material");
+  auto mass = nodes.span<double>("mass");
+  for (size_t e = 0; e < tets.size(); ++e) {
+    for (int k = 0; k < 4; ++k) mass[conn[4 * e + k]] += spec_.materials[material[e]].density * vol[e] / 4.0;
+    energy_floor_ += 1e-12 * spec_.materials[material[e]].young * vol[e];
+  }
+  auto inv_mass = nodes.span<double>("inv_mass");
+  for (size_t n = 0; n < nodes.size(); ++n) inv_mass[n] = mass[n] > 0 ? 1.0 / mass[n] : 0.0;
+
+  // Per-material Lame constants and viscous coefficient eta = 2 h beta sqrt(E rho) (femdem.md 1d), with h
+  // the material's mean smallest altitude: beta is then the damping fraction at the typical element.
+  const auto x0 = nodes.span<const double>("x0");
+  const size_t nm = spec_.materials.size();
+  std::vector<double> h_sum(nm, 0.0), density(nm);
+  std::vector<size_t> h_count(nm, 0);
+  for (size_t e = 0; e < tets.size(); ++e) {
+    h_sum[material[e]] += 3.0 * vol[e] / max_face_area(x0, &conn[4 * e]);
+    ++h_count[material[e]];
+  }
+  tet_materials_.resize(nm);
+  for (size_t m = 0; m < nm; ++m) {
+    const MaterialSpec& s = spec_.materials[m];
+    const double lambda = s.young * s.poisson / ((1 + s.poisson) * (1 - 2 * s.poisson));
+    const double mu = s.young / (2 * (1 + s.poisson));
+    const double h_mean = h_count[m] ? h_sum[m] / h_count[m] : 0.0;
+    tet_materials_[m] = {lambda, mu, 2.0 * h_mean * s.damping * std::sqrt(s.young * s.density)};
+    density[m] = s.density;
+  }
+  // The stable step of the tets, and the tet that sets it (named in diagnostics).
+  tet_stable_dt_ = INFINITY;
+  for (size_t e = 0; e < tets.size(); ++e) {
+    const double dt = kernels::tet_damped_stable_step(x0, conn, material, tet_materials_, density, e, e + 1);
+    if (dt < tet_stable_dt_) tet_stable_dt_ = dt, critical_tet_ = static_cast<int64_t>(e);
+  }
+}
+
+}  // namespace rift

@@ -64,6 +64,35 @@ TEST(Run, RestartIsBitwiseIdenticalToAStraightRun) {
   fs::remove_all(b);
 }
 
+TEST(Run, RestartAfterAFractureIsBitwiseIdentical) {
+  // One joint opened to failure (breaks near step 19,000 of 24,580): the restart point lies after the
+  // break, so the damage history, the broken flag and the fracture log all go through the checkpoint.
+  const Scene scene =
+      load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/single_joint_mode_I.yaml", {});
+  const fs::path a = fresh_dir("frac_straight"), b = fresh_dir("frac_restarted");
+  const RunResult straight = run(scene, a, 1);
+  ASSERT_TRUE(straight.completed);
+  run(scene, b, 2, straight.steps - 2000);
+  const RunResult second = run(scene, b, 1, std::nullopt, true);
+  EXPECT_EQ(hex64(second.state_hash), hex64(straight.state_hash));
+  std::ifstream fa(a / "fractures.csv"), fb(b / "fractures.csv");
+  std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+  EXPECT_EQ(sa, sb);
+  EXPECT_NE(sa.find("tensile"), std::string::npos) << sa;
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
+TEST(Run, NoFractureSectionMeansNoJoints) {
+  // Model only what the scene requires: the quickstart bar has no fracture section, so its tets share
+  // nodes and the run has no joint table and no joint system.
+  RunOptions o;
+  o.write_output = false;
+  Simulation sim(small_scene(), o);
+  EXPECT_FALSE(sim.world().store.has("solid_joint"));
+  for (System* s : sim.world().systems()) EXPECT_NE(s->name(), "joint_forces");
+}
+
 TEST(Run, SameStateOnOneTwoAndFourThreads) {
   const Scene scene = small_scene();
   std::string reference;

@@ -69,6 +69,8 @@ TEST(SingleJoint, ModeIIUnderConfinementPeaksOnMohrCoulombAndDissipatesGII) {
   EXPECT_NEAR(h.dissipated / kGII, 1.0, 0.02) << "dissipated " << h.dissipated << " J/m^2";
   EXPECT_EQ(h.broken, 1u);
   EXPECT_EQ(h.fractures["shear"], 1);
+  RecordProperty("peak_over_mohr_coulomb", std::to_string(h.peak_shear / expected));
+  RecordProperty("dissipated_over_GII", std::to_string(h.dissipated / kGII));
 }
 
 TEST(SingleJoint, UnloadingAndReloadingFollowTheSecantAtDMax) {

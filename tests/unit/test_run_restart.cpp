@@ -83,6 +83,22 @@ TEST(Run, RestartAfterAFractureIsBitwiseIdentical) {
   fs::remove_all(b);
 }
 
+TEST(Run, FractureZoneMaterialWithoutFracturePropertiesIsRefused) {
+  Scene scene = load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/patch_uniaxial.yaml", {});
+  scene.solid->materials[0].fracture.reset();
+  RunOptions o;
+  o.write_output = false;
+  try {
+    Simulation sim(scene, o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("solid.materials[0] ('limestone') fills tets of the fracture zone"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("tensile_strength"), std::string::npos) << m;
+  }
+}
+
 TEST(Run, NoFractureSectionMeansNoJoints) {
   // Model only what the scene requires: the quickstart bar has no fracture section, so its tets share
   // nodes and the run has no joint table and no joint system.

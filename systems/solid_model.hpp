@@ -54,6 +54,7 @@ class SolidModel : public Model {
   void assign_materials(const TetMesh& mesh);
   std::vector<uint8_t> fracture_zone(const TetMesh& mesh) const;
   void apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& mesh);
+  size_t hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index);  // nodes held
   void build_joints(const DiscontinuousMesh& dm);
   void set_joint_initial_state();
   void build_force_slots();

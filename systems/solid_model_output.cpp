@@ -139,9 +139,12 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
   std::vector<std::string> surfaces;
   std::vector<size_t> slot(velocity_conditions_.size());
   for (size_t i = 0; i < velocity_conditions_.size(); ++i) {
-    const auto it = std::find(surfaces.begin(), surfaces.end(), velocity_conditions_[i].surface);
+    // A node set is named by its position in the velocity conditions: "nodes<i>".
+    const std::string name =
+        velocity_conditions_[i].box_min ? "nodes" + std::to_string(i) : velocity_conditions_[i].surface;
+    const auto it = std::find(surfaces.begin(), surfaces.end(), name);
     slot[i] = static_cast<size_t>(it - surfaces.begin());
-    if (it == surfaces.end()) surfaces.push_back(velocity_conditions_[i].surface);
+    if (it == surfaces.end()) surfaces.push_back(name);
   }
   reaction_.assign(3 * surfaces.size(), 0.0);
   const Table& nodes = store_.table(solid::node_table);

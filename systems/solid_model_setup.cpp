@@ -156,6 +156,13 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
   for (size_t b = 0; b < spec_.boundaries.size(); ++b) {
     const SolidBoundarySpec& bc = spec_.boundaries[b];
     const std::string key = "solid.boundaries[" + std::to_string(b) + "].surface";
+    if (bc.box_min) {  // a node set: fixed or velocity only (the reader checks)
+      if (hold_nodes_in_box(bc, static_cast<int32_t>(velocity_conditions_.size())) == 0)
+        throw Error("solid.boundaries[" + std::to_string(b) +
+                    "].box_min: no solid node lies in the box; check box_min / box_max against the mesh");
+      velocity_conditions_.push_back(bc);
+      continue;
+    }
     const int32_t surface = mesh.surface_index(bc.surface);
     if (surface < 0)
       throw Error(key + ": the mesh has no surface '" + bc.surface +
@@ -200,6 +207,24 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
   faces.resize(face_load.size());
   std::copy(face_nodes.begin(), face_nodes.end(), faces.span<int32_t>("nodes").begin());
   std::copy(face_load.begin(), face_load.end(), faces.span<int32_t>("load").begin());
+}
+
+size_t SolidModel::hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index) {
+  Table& nodes = store_.table(solid::node_table);
+  const auto x0 = nodes.span<const double>("x0");
+  auto free = nodes.span<uint8_t>("free");
+  auto held = nodes.span<int32_t>("held");
+  size_t count = 0;
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    bool inside = true;
+    for (int c = 0; c < 3; ++c)
+      inside = inside && x0[3 * n + c] >= (*bc.box_min)[c] && x0[3 * n + c] <= (*bc.box_max)[c];
+    if (!inside) continue;
+    ++count;
+    for (int c = 0; c < 3; ++c)
+      if (bc.components[c]) free[3 * n + c] = 0, held[3 * n + c] = index;
+  }
+  return count;
 }
 
 void SolidModel::build_force_slots() {

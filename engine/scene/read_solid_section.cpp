@@ -34,7 +34,17 @@ MaterialSpec read_material(MapReader& m) {
 SolidBoundarySpec read_boundary(MapReader& b) {
   using Kind = SolidBoundarySpec::Kind;
   SolidBoundarySpec bc;
-  bc.surface = b.string("surface", std::nullopt);
+  const bool by_box = b.has("box_min") || b.has("box_max");
+  if (by_box) {
+    bc.box_min = b.vec3("box_min", any_real("m"), std::nullopt);
+    bc.box_max = b.vec3("box_max", any_real("m"), std::nullopt);
+    if (b.has("surface")) b.error("surface", "either surface or box_min/box_max (a node set), not both");
+    b.declare("surface");
+  } else {
+    bc.surface = b.string("surface", std::nullopt);
+    b.declare("box_min");
+    b.declare("box_max");
+  }
   bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
   if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
     for (auto key : {"components", "direction", "value"}) b.declare(key);
@@ -56,6 +66,8 @@ SolidBoundarySpec read_boundary(MapReader& b) {
   } else {
     b.forbid("direction", for_type);
   }
+  if (by_box && bc.kind != Kind::fixed && bc.kind != Kind::velocity && b.ok("type"))
+    b.error("type", "fixed or velocity for a node set (box_min/box_max): loads need surface faces");
   if (bc.kind == Kind::fixed) {
     b.forbid("value", for_type);
   } else if (bc.kind == Kind::pressure) {

@@ -166,7 +166,12 @@ void emit_initial_stress(Lines& o, const InitialStressSpec& s) {
 void emit_boundary(Lines& o, const SolidBoundarySpec& b) {
   using Kind = SolidBoundarySpec::Kind;
   static constexpr const char* kTypes[] = {"fixed", "velocity", "traction", "pressure", "in_situ"};
-  o.item(2, "surface", quoted(b.surface));
+  if (b.box_min) {
+    o.item(2, "box_min", vec3(*b.box_min));
+    o.line(3, "box_max", vec3(*b.box_max));
+  } else {
+    o.item(2, "surface", quoted(b.surface));
+  }
   o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
   if (b.kind == Kind::fixed || b.kind == Kind::velocity) {
     std::string comps;

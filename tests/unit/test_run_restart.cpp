@@ -99,6 +99,22 @@ TEST(Run, FractureZoneMaterialWithoutFracturePropertiesIsRefused) {
   }
 }
 
+TEST(Run, NodeSetInABoxHoldsTheSameNodesAsTheSurface) {
+  // The quickstart bar is clamped on surface xmin (x = 0); a node set of the box |x| <= 1e-9 m holds
+  // exactly those nodes, so the run must end in the same state.
+  const Scene by_surface = small_scene();
+  Scene by_box = small_scene();
+  SolidBoundarySpec& clamp = by_box.solid->boundaries[0];
+  ASSERT_EQ(clamp.surface, "xmin");
+  clamp.surface.clear();
+  clamp.box_min = std::array<double, 3>{-1e-9, -1, -1};
+  clamp.box_max = std::array<double, 3>{1e-9, 1, 1};
+  const fs::path a = fresh_dir("surface_clamp"), b = fresh_dir("box_clamp");
+  EXPECT_EQ(hex64(run(by_surface, a, 1).state_hash), hex64(run(by_box, b, 1).state_hash));
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
 TEST(Run, NoFractureSectionMeansNoJoints) {
   // Model only what the scene requires: the quickstart bar has no fracture section, so its tets share
   // nodes and the run has no joint table and no joint system.

@@ -110,7 +110,7 @@ struct SolidBoundarySpec {
   // in_situ: the traction initial_stress . n on the surface (outward n), scaled by `function`.
   enum class Kind { fixed, velocity, traction, pressure, in_situ };
   Kind kind = Kind::fixed;
-  std::string surface;                               // mesh surface name ("" when a node box is used)
+  std::string surface;  // mesh surface name ("" when a node box is used)
   // fixed / velocity only, instead of a surface: the node set of all solid nodes whose reference
   // position lies in [box_min, box_max] (both given or neither) [m].
   std::optional<std::array<double, 3>> box_min, box_max;

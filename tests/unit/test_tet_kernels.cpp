@@ -172,23 +172,8 @@ TEST_P(BothPaths, ForcesAreMinusEnergyGradient) {
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k) A[i][k] = (i == k) + scale * g[i][k];
     m.map(A, {0.1, 0.2, 0.3});
-    m.run(kernel());
-    const std::vector<double> force = m.force;
-    const double fmax = std::fabs(*std::max_element(
-        force.begin(), force.end(), [](double a, double b) { return std::fabs(a) < std::fabs(b); }));
-    const double h = 1e-6;  // tet size is ~1
-    for (size_t c = 0; c < 12; ++c) {
-      const double keep = m.x[c];
-      m.x[c] = keep + h;
-      m.run(kernel());
-      const double e_plus = m.energy[0];
-      m.x[c] = keep - h;
-      m.run(kernel());
-      const double e_minus = m.energy[0];
-      m.x[c] = keep;
-      const double gradient = (e_plus - e_minus) / (2 * h);
-      EXPECT_NEAR(-gradient, force[c], 1e-6 * fmax) << "component " << c << ", strain scale " << scale;
-    }
+    // h = 1e-6 of the tet size (~1); bound 1e-6 of the largest force.
+    expect_force_is_minus_energy_gradient(m, kernel(), 1e-6, 1e-6, ", strain scale " + std::to_string(scale));
   }
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <ostream>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "kernels/tet_forces.hpp"
@@ -97,6 +98,27 @@ inline Mesh cube_patch() {
           m.tets.insert(m.tets.end(), t.begin(), t.end());
         }
   return m;
+}
+
+// Checks every corner force of a one-tet mesh against minus the central difference (step h) of the energy
+// output, to `tolerance` times the largest force. Leaves m.x unchanged.
+inline void expect_force_is_minus_energy_gradient(Mesh& m, ForceFn kernel, double h, double tolerance,
+                                                  const std::string& context) {
+  m.run(kernel);
+  const std::vector<double> force = m.force;
+  double largest = 0.0;
+  for (double f : force) largest = std::max(largest, std::fabs(f));
+  for (size_t c = 0; c < 12; ++c) {
+    const double keep = m.x[c];
+    m.x[c] = keep + h;
+    m.run(kernel);
+    const double e_plus = m.energy[0];
+    m.x[c] = keep - h;
+    m.run(kernel);
+    const double e_minus = m.energy[0];
+    m.x[c] = keep;
+    EXPECT_NEAR(-(e_plus - e_minus) / (2 * h), force[c], tolerance * largest) << "component " << c << context;
+  }
 }
 
 inline Mat3 identity_plus(const Mat3& eps) {

@@ -6,6 +6,7 @@
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/msh_reader.hpp"
+#include "systems/mesh_conversion_model.hpp"
 #include "systems/solid_model.hpp"
 
 namespace rift {
@@ -30,6 +31,18 @@ TetMesh load_mesh(const MeshSpec& spec) {
   return generate_box_mesh(*spec.generate);
 }
 
+// Surfaces that existed before any fracture and are not the outer boundary: the generator's notches, or a
+// mesh file's physical surfaces whose name starts with "notch".
+std::vector<std::string> notch_surfaces(const MeshSpec& spec, const TetMesh& mesh) {
+  std::vector<std::string> names;
+  if (spec.generate)
+    for (const auto& n : spec.generate->notches) names.push_back(n.name);
+  else
+    for (const auto& s : mesh.surface_names)
+      if (s.rfind("notch", 0) == 0) names.push_back(s);
+  return names;
+}
+
 std::unique_ptr<World> build_world(const Scene& scene) {
   auto world = std::make_unique<World>();
   const auto t0 = std::chrono::steady_clock::now();
@@ -38,6 +51,10 @@ std::unique_ptr<World> build_world(const Scene& scene) {
   world->mesh_quality = measure_quality(world->mesh);
   if (scene.solid)
     world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  // The continuous meshes only when something consumes them (today: an output that asks for the surface).
+  if (scene.solid && scene.output.surface)
+    world->models.push_back(std::make_unique<MeshConversionModel>(world->store, world->mesh,
+                                                                  notch_surfaces(scene.mesh, world->mesh)));
   return world;
 }
 

@@ -82,7 +82,9 @@ void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh
   nodes.add<uint8_t>("free", 3);
   nodes.add<int32_t>("held", 3);
   nodes.add<int32_t>("slots", 2);
+  nodes.add<int32_t>("vertex");
   nodes.resize(dm.nodes.size());
+  std::copy(dm.node_vertex.begin(), dm.node_vertex.end(), nodes.span<int32_t>("vertex").begin());
   auto x0 = nodes.span<double>("x0");
   for (size_t n = 0; n < dm.nodes.size(); ++n)
     for (int c = 0; c < 3; ++c) x0[3 * n + c] = dm.nodes[n][c];

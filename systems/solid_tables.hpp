@@ -15,8 +15,8 @@ inline constexpr const char* energy_table = "solid_energy";
 
 // solid_node: x0 (3, reference position), x (3), v (3, at t - dt/2), f (3, total force of the last step),
 // mass (1), inv_mass (1), free (u8 x3), held (i32 x3, velocity condition per component or -1), slots (i32 x2:
-// [begin, end) in solid_force_slot) solid_tet: nodes (i32 x4), dm_inv (9), volume0 (1), material (i32),
-// region (i32),
+// [begin, end) in solid_force_slot), vertex (i32: the input mesh vertex the node copies)
+// solid_tet: nodes (i32 x4), dm_inv (9), volume0 (1), material (i32), region (i32),
 //            corner_force (12), stress (6), energy (1), viscous_power (1)
 // solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),
 //            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear), corner_force (18),

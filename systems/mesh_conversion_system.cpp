@@ -1,0 +1,26 @@
+#include "systems/mesh_conversion_system.hpp"
+
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+// The conversion's own state has no column in the store; its key orders consumers after it.
+inline constexpr const char* conversion_key = "mesh_conversion.surface";
+
+MeshConversionSystem::MeshConversionSystem(Store& store, MeshConversion& conversion)
+    : store_(store), conversion_(conversion) {}
+
+Access MeshConversionSystem::access() const {
+  using solid::col;
+  return {{col(solid::event_table, "joint"), col(solid::event_table, "time")}, {conversion_key}, false};
+}
+
+void MeshConversionSystem::catch_up() {
+  const Table& events = store_.table(solid::event_table);
+  const auto joint = events.span<const int32_t>("joint");
+  const auto time = events.span<const double>("time");
+  for (; events_seen_ < events.size(); ++events_seen_)
+    conversion_.break_joint(joint[events_seen_], time[events_seen_]);
+}
+
+}  // namespace rift

@@ -118,7 +118,7 @@ void Simulation::step_once() {
   const StepContext ctx{step_, time(), dt_};
   graph_->run_step(ctx);
   ++step_;
-  const StepContext after{step_, time(), dt_};
+  const StepContext after{step_, time(), dt_, step_ == total_steps_};
   for (const auto& m : world_->models)
     if (auto diagnosis = m->check_health(after))
       throw Error("run stopped by the " + m->name() + " guard: " + *diagnosis);

@@ -16,9 +16,10 @@ struct Access {
 };
 
 struct StepContext {
-  int64_t step = 0;  // index of the step being taken (0 for the first)
-  double time = 0;   // simulated time at the start of the step [s]
-  double dt = 0;     // step size [s]
+  int64_t step = 0;   // index of the step being taken (0 for the first)
+  double time = 0;    // simulated time at the start of the step [s]
+  double dt = 0;      // step size [s]
+  bool last = false;  // after the run's final step (health checks that sample every few steps run here too)
 };
 
 class System {

@@ -1,10 +1,11 @@
 // Mesh conversion (engine/mesh/mesh_conversion.hpp) on Kuhn lattice boxes of ~1e4, 1e5 and 1e6 tets, all
 // in the fracture zone (4 private nodes per tet, a joint on every interior face):
 //   BM_ConversionUpdate  the incremental update for k newly broken joints (k = 1, 64, 4096), joints drawn
-//                        at random (the worst case for locality: a real crack front is clustered);
-//                        items = joints folded in. The claim under test: the cost per joint does not grow
-//                        with the mesh. The state is rebuilt (untimed) once 20 % of the joints are broken,
-//                        so every size is measured in the same regime.
+//                        at random (clustered = 0, the worst case for locality) or in joint order
+//                        (clustered = 1: neighbouring joints, as along a crack front); items = joints. The
+//                        claim under test: the cost per joint does not grow with the mesh. The state is
+//                        rebuilt (untimed) once 20 % of the joints are broken, so every size is measured in
+//                        the same regime.
 //   BM_ConversionBuild   the whole build from scratch, for comparison: items = tets.
 //   BM_ConversionKinematics  vertex positions and velocities as mass-weighted means of the copies, at 1
 //                        and 2 threads; items = node copies. Byte model per copy: x, v, mass read 56 B, its
@@ -74,7 +75,8 @@ void sizes(benchmark::internal::Benchmark* b, bool with_threads, bool with_k) {
   for (int64_t t : tets) {
     if (with_k) {
       for (int64_t k : {1, 64, 4096})
-        if (k <= t / 2) b->Args({t, k});  // a tiny mesh has fewer joints than the largest batch
+        for (int64_t clustered : {0, 1})
+          if (k <= t / 2) b->Args({t, k, clustered});  // a tiny mesh has fewer joints than the largest batch
     } else if (with_threads) {
       for (int64_t th : {1, 2}) b->Args({t, th});
     } else {
@@ -86,6 +88,7 @@ void sizes(benchmark::internal::Benchmark* b, bool with_threads, bool with_k) {
 void BM_ConversionUpdate(benchmark::State& state) {
   const Fixture& f = fixture(static_cast<size_t>(state.range(0)));
   const size_t k = static_cast<size_t>(state.range(1));
+  const bool clustered = state.range(2) != 0;
   const size_t limit = std::max(k, f.order.size() / 5);
   auto conv = std::make_unique<MeshConversion>(f.topology());
   size_t next = 0, folded = 0;
@@ -96,7 +99,8 @@ void BM_ConversionUpdate(benchmark::State& state) {
       next = 0;
       state.ResumeTiming();
     }
-    for (size_t i = 0; i < k; ++i) conv->break_joint(f.order[next + i], 0.0);
+    for (size_t i = 0; i < k; ++i)
+      conv->break_joint(clustered ? static_cast<int32_t>(next + i) : f.order[next + i], 0.0);
     next += k;
     folded += k;
   }
@@ -106,9 +110,9 @@ void BM_ConversionUpdate(benchmark::State& state) {
   state.counters["ns_per_joint"] = benchmark::Counter(
       1e-9 * static_cast<double>(folded), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_ConversionUpdate)->ArgNames({"tets", "k"})->Apply([](auto* b) {
-                                                         sizes(b, false, true);
-                                                       }) -> Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ConversionUpdate)
+    ->ArgNames({"tets", "k", "clustered"})
+    ->Apply([](auto* b) { sizes(b, false, true); }) -> Unit(benchmark::kMicrosecond);
 
 void BM_ConversionBuild(benchmark::State& state) {
   const Fixture& f = fixture(static_cast<size_t>(state.range(0)));

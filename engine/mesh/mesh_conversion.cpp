@@ -105,10 +105,21 @@ void MeshConversion::build_indices(const SolidTopology& topology) {
   std::vector<int32_t> packed;
   build_csr(topology.input_vertex_count, key, incidence_offsets_, packed, value);
   incidence_joint_.resize(packed.size());
-  incidence_corner_.resize(packed.size());
-  for (size_t k = 0; k < packed.size(); ++k) {
-    incidence_joint_[k] = packed[k] / 3;
-    incidence_corner_[k] = static_cast<uint8_t>(packed[k] % 3);
+  incidence_local_.resize(packed.size());
+  for (size_t v = 0; v < topology.input_vertex_count; ++v) {
+    const int32_t* first = &copies_[copy_offsets_[v]];
+    const int32_t* last = &copies_[copy_offsets_[v + 1]];
+    if (last - first > 65535)
+      throw Error("mesh conversion: input vertex " + std::to_string(v) + " has " +
+                  std::to_string(last - first) + " node copies; at most 65535 are supported");
+    auto local = [&](int32_t node) {
+      return static_cast<uint16_t>(std::lower_bound(first, last, node) - first);
+    };
+    for (int32_t k = incidence_offsets_[v]; k < incidence_offsets_[v + 1]; ++k) {
+      const int32_t j = packed[k] / 3, c = packed[k] % 3;
+      incidence_joint_[k] = j;
+      incidence_local_[k] = {local(joint_nodes_[6 * j + c]), local(joint_nodes_[6 * j + c + 3])};
+    }
   }
 
   std::vector<int32_t> tet_of(tet_nodes_.size());
@@ -200,15 +211,8 @@ void MeshConversion::regroup(int32_t v, bool assign_all) {
   if (count == 0) return;  // an input vertex no tet uses
   const int32_t* copy = &copies_[begin];
   for (int32_t i = 0; i < count; ++i) parent_[i] = i;
-  auto local = [&](int32_t node) {
-    return static_cast<int32_t>(std::lower_bound(copy, copy + count, node) - copy);
-  };
-  for (int32_t k = incidence_offsets_[v]; k < incidence_offsets_[v + 1]; ++k) {
-    const int32_t j = incidence_joint_[k];
-    if (!intact_[j]) continue;
-    const int c = incidence_corner_[k];
-    unite(parent_, local(joint_nodes_[6 * j + c]), local(joint_nodes_[6 * j + c + 3]));
-  }
+  for (int32_t k = incidence_offsets_[v]; k < incidence_offsets_[v + 1]; ++k)
+    if (intact_[incidence_joint_[k]]) unite(parent_, incidence_local_[k][0], incidence_local_[k][1]);
   // Leaders (roots) come in ascending order. At build every group gets the next id. On update, the
   // first group met with a given old id keeps it; later ones with the same old id split off.
   for (int32_t i = 0; i < count; ++i) {

@@ -101,9 +101,10 @@ class MeshConversion {
   void set_copy_vertex(int32_t copy, int32_t vertex);
 
   std::span<const int32_t> tet_nodes_, joint_nodes_, joint_tets_, node_vertex_in_;
-  // Per input vertex: its copies (ascending) and its (joint, corner) incidences, as CSR.
+  // Per input vertex: its copies (ascending) and its joint incidences, as CSR. An incidence is a joint
+  // and the two copies it ties, as positions in the vertex's copy list (found once, at build).
   std::vector<int32_t> copy_offsets_, copies_, incidence_offsets_, incidence_joint_;
-  std::vector<uint8_t> incidence_corner_;
+  std::vector<std::array<uint16_t, 2>> incidence_local_;
   // Per solid node: the tets that use it, as CSR (one tet for a private copy).
   std::vector<int32_t> node_tet_offsets_, node_tets_;
   std::vector<int32_t> copy_vertex_, vertex_source_, tet_vertices_;

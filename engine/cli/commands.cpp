@@ -18,6 +18,8 @@
 #include "engine/core/log.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
+#include "engine/sweep/reference_metrics.hpp"
+#include "engine/sweep/sweep.hpp"
 #include "rift/build_info.hpp"
 #include "rift/default_scene.hpp"
 
@@ -76,10 +78,57 @@ int run(const RunArgs& args) {
     const RunResult r = sim->run();
     std::cout << "output: " << options.out_dir.string() << "/rift.xdmf (open in ParaView), summary.json, "
               << "timeseries.csv\n";
+    if (r.completed)
+      for (const auto& m : read_reference_metrics(sim->scene().reference, options.out_dir)) {
+        if (!m.value)
+          std::cout << "reference " << m.name << ": " << m.problem << "\n";
+        else if (m.reference)
+          std::printf("reference %s = %.9g (analytic %.9g, relative error %.3g)\n", m.name.c_str(), *m.value,
+                      *m.reference, relative_error(*m.value, *m.reference));
+        else
+          std::printf("reference %s = %.9g\n", m.name.c_str(), *m.value);
+      }
     return r.stop_reason == "signal" ? 130 : 0;
   } catch (const Error& e) {
     spdlog::error("{}", e.what());
     return 1;
+  }
+}
+
+int sweep(const SweepArgs& args) {
+  init_logging(false, true);
+  if (args.scene.scene.empty()) {
+    std::cerr << "rift sweep: give a scene file\n";
+    return 2;
+  }
+  SweepOptions o;
+  o.scene_path = args.scene.scene;
+  o.overrides = args.scene.overrides;
+  o.threads = args.threads;
+  try {
+    for (const auto& v : args.vary) o.axes.push_back(parse_sweep_axis(v));
+    o.out_dir = args.out_dir.empty()
+                    ? std::filesystem::path("rift-out") / ("sweep-" + load_scene(o.scene_path).name)
+                    : std::filesystem::path(args.out_dir);
+  } catch (const Error& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    const SweepResult r = run_sweep(o);
+    std::cout << "sweep: " << r.rows.size() << " variants in " << (o.out_dir / "sweep.csv").string() << " ("
+              << r.ran << " run now)\n";
+    if (!r.plot_note.empty()) std::cout << r.plot_note << "\n";
+    if (r.interrupted) {
+      std::cout << "interrupted: run the same command again to finish the sweep\n";
+      return 130;
+    }
+    return 0;
+  } catch (const Error& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
   }
 }
 

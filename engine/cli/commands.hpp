@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands behind `rift`: run, check, info, graph. Each returns the process exit code:
+// The subcommands behind `rift`: run, check, info, graph, sweep. Each returns the process exit code:
 // 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options), 130 stopped by a
 // signal (a checkpoint was written; continue with --restart latest).
 #include <optional>
@@ -22,7 +22,15 @@ struct RunArgs {
   bool quiet = false;
 };
 
+struct SweepArgs {
+  SceneArgs scene;
+  std::vector<std::string> vary;  // key.path=v1,v2,...
+  std::string out_dir;            // empty: rift-out/sweep-<scene name>
+  int threads = 1;
+};
+
 int run(const RunArgs& args);
+int sweep(const SweepArgs& args);
 int check(const SceneArgs& args);
 int info();
 int graph(const SceneArgs& args, int threads);

@@ -33,6 +33,17 @@ int main(int argc, char** argv) {
   graph_cmd->add_option("--set", graph_args.overrides, "override a scene value (repeatable)");
   graph_cmd->add_option("--threads,-j", graph_threads, "worker threads")->check(CLI::Range(1, 1024));
 
+  SweepArgs sweep_args;
+  auto* sweep_cmd = app.add_subcommand(
+      "sweep", "Run a scene's variants and record wall time against error (docs/speed-accuracy.md)");
+  sweep_cmd->add_option("scene", sweep_args.scene.scene, "scene file (YAML)")->required();
+  sweep_cmd->add_option("--vary", sweep_args.vary, "key.path=v1,v2,... (repeatable: every combination runs)")
+      ->required();
+  sweep_cmd->add_option("--set", sweep_args.scene.overrides, "override a scene value in every variant");
+  sweep_cmd->add_option("--out,-o", sweep_args.out_dir,
+                        "output folder (default rift-out/sweep-<scene name>)");
+  sweep_cmd->add_option("--threads,-j", sweep_args.threads, "worker threads")->check(CLI::Range(1, 1024));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -42,5 +53,6 @@ int main(int argc, char** argv) {
   if (*check_cmd) return check(check_args);
   if (*info_cmd) return info();
   if (*graph_cmd) return graph(graph_args, graph_threads);
+  if (*sweep_cmd) return sweep(sweep_args);
   return 2;
 }

@@ -38,6 +38,7 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
   scene.output = read_output_section(output);
   MapReader checkpoint = doc.section("checkpoint", false);
   scene.checkpoint = read_checkpoint_section(checkpoint);
+  for (MapReader& m : doc.section_list("reference", 0)) scene.reference.push_back(read_reference_metric(m));
   doc.finish();
   return scene;
 }

@@ -1,5 +1,6 @@
 // The sections that describe the run rather than the physics: scene, time, output, checkpoint.
 #include <algorithm>
+#include <array>
 
 #include "engine/scene/output_fields.hpp"
 #include "engine/scene/scene_sections.hpp"
@@ -39,6 +40,26 @@ CheckpointSpec read_checkpoint_section(MapReader& sec) {
   c.keep = static_cast<int32_t>(sec.integer("keep", IntRule{1, INT32_MAX}, 2));
   sec.finish();
   return c;
+}
+
+ReferenceMetricSpec read_reference_metric(MapReader& sec) {
+  static constexpr std::array<std::string_view, 4> kReduce{"max", "min", "final", "max_abs"};
+  ReferenceMetricSpec m;
+  m.name = sec.string("name", std::nullopt);
+  const bool series = sec.has("series"), summary = sec.has("summary");
+  if (series == summary)
+    sec.error(series ? "summary" : "series",
+              "exactly one of 'series' (a timeseries.csv column) or 'summary' (a summary.json path)");
+  if (series) m.series = sec.string("series", std::nullopt);
+  if (summary) {
+    m.summary = sec.string("summary", std::nullopt);
+    if (sec.has("reduce")) sec.forbid("reduce", "'reduce' applies to a 'series' only");
+  }
+  if (!summary) m.reduce = static_cast<ReferenceMetricSpec::Reduce>(sec.choice("reduce", kReduce, 0));
+  m.factor = sec.real("factor", any_real(""), 1.0);
+  m.value = sec.optional_real("value", any_real(""));
+  sec.finish();
+  return m;
 }
 
 }  // namespace rift

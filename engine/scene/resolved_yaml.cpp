@@ -210,6 +210,23 @@ void emit_checkpoint(Lines& o, const CheckpointSpec& c) {
   o.line(1, "keep", std::to_string(c.keep));
 }
 
+void emit_reference(Lines& o, const std::vector<ReferenceMetricSpec>& reference) {
+  static constexpr const char* kReduce[] = {"max", "min", "final", "max_abs"};
+  if (reference.empty()) return;
+  o.line(0, "reference");
+  for (const auto& m : reference) {
+    o.item(1, "name", quoted(m.name));
+    if (m.summary.empty()) {
+      o.line(2, "series", quoted(m.series));
+      o.line(2, "reduce", kReduce[static_cast<int>(m.reduce)]);
+    } else {
+      o.line(2, "summary", quoted(m.summary));
+    }
+    o.line(2, "factor", yaml_real(m.factor));
+    if (m.value) o.line(2, "value", yaml_real(*m.value));
+  }
+}
+
 }  // namespace
 
 std::string emit_resolved_yaml(const Scene& scene) {
@@ -223,6 +240,7 @@ std::string emit_resolved_yaml(const Scene& scene) {
   if (scene.solid) emit_solid(o, *scene.solid);
   emit_output(o, scene.output);
   emit_checkpoint(o, scene.checkpoint);
+  emit_reference(o, scene.reference);
   return std::move(o.text());
 }
 

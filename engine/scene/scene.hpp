@@ -146,6 +146,18 @@ struct CheckpointSpec {
   int32_t keep = 2;            // newest checkpoints kept
 };
 
+// A number a run produces that the scene can compare with a known answer (`reference` section): the
+// sweep's error metrics. From a time-series column reduced over the run, or a summary.json value.
+struct ReferenceMetricSpec {
+  enum class Reduce { max, min, final, max_abs };
+  std::string name;
+  std::string series;           // a timeseries.csv column ("" when `summary` is used)
+  std::string summary;          // a summary.json value as a dot path, e.g. metrics.solid.energy.fracture
+  Reduce reduce = Reduce::max;  // series only
+  double factor = 1.0;          // the metric is factor x the value read (e.g. 1 / area)
+  std::optional<double> value;  // the analytic answer; absent: a sweep compares with its finest variant
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -155,8 +167,9 @@ struct Scene {
   std::optional<SolidSpec> solid;  // absent: no solid systems in the run
   OutputSpec output;
   CheckpointSpec checkpoint;
-  std::string resolved_yaml;  // the complete scene (defaults filled, overrides applied)
-  std::string hash;           // FNV-1a 64 of resolved_yaml, 16 hex digits (stable across runs)
+  std::vector<ReferenceMetricSpec> reference;  // empty: the scene names no error metrics
+  std::string resolved_yaml;                   // the complete scene (defaults filled, overrides applied)
+  std::string hash;  // FNV-1a 64 of resolved_yaml, 16 hex digits (stable across runs)
 };
 
 }  // namespace rift

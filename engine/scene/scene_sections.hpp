@@ -20,5 +20,6 @@ FractureSpec read_fracture_section(MapReader& sec);
 InitialStressSpec read_initial_stress_section(MapReader& sec);
 OutputSpec read_output_section(MapReader& sec);
 CheckpointSpec read_checkpoint_section(MapReader& sec);
+ReferenceMetricSpec read_reference_metric(MapReader& sec);
 
 }  // namespace rift

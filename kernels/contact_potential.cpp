@@ -1,0 +1,337 @@
+#include "kernels/contact_potential.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rift::kernels {
+
+namespace {
+
+inline void cross(const double a[3], const double b[3], double c[3]) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double dot(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// A tet's barycentric coordinates as affine functions B_j(x) = grad[j] . x + c[j], its outward faces and
+// its box.
+struct TetGeometry {
+  double x[4][3];
+  double grad[4][3], c[4];
+  int face[4][3];  // face j: the corners other than j, ordered so that the right-hand normal points out
+  double n[4][3];  // outward unit normal of face j
+  double lo[3], hi[3];
+  bool ok;  // volume non-zero and finite
+
+  void bary(const double p[3], double b[4]) const {
+    for (int j = 0; j < 4; ++j) b[j] = dot(grad[j], p) + c[j];
+  }
+};
+
+TetGeometry tet_geometry(const double t[4][3]) {
+  TetGeometry g;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) g.x[i][k] = t[i][k];
+  double e[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) e[i][k] = t[i + 1][k] - t[0][k];
+  double r[3][3];
+  cross(e[1], e[2], r[0]);
+  cross(e[2], e[0], r[1]);
+  cross(e[0], e[1], r[2]);
+  const double det = dot(e[0], r[0]);
+  g.ok = det != 0.0 && std::isfinite(det);
+  const double inv = g.ok ? 1.0 / det : 0.0;
+  double sum_c = 0.0;
+  for (int k = 0; k < 3; ++k) g.grad[0][k] = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      g.grad[i + 1][k] = r[i][k] * inv;
+      g.grad[0][k] -= g.grad[i + 1][k];
+    }
+    g.c[i + 1] = -dot(g.grad[i + 1], t[0]);
+    sum_c += g.c[i + 1];
+  }
+  g.c[0] = 1.0 - sum_c;
+  for (int j = 0; j < 4; ++j) {
+    int f[3] = {(j + 1) % 4, (j + 2) % 4, (j + 3) % 4};
+    double u[3], w[3], nn[3], d[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = t[f[1]][k] - t[f[0]][k];
+      w[k] = t[f[2]][k] - t[f[0]][k];
+      d[k] = t[j][k] - t[f[0]][k];
+    }
+    cross(u, w, nn);
+    if (dot(nn, d) > 0.0) {
+      std::swap(f[1], f[2]);
+      for (double& v : nn) v = -v;
+    }
+    const double len = std::sqrt(dot(nn, nn));
+    const double il = len > 0.0 ? 1.0 / len : 0.0;
+    for (int k = 0; k < 3; ++k) {
+      g.face[j][k] = f[k];
+      g.n[j][k] = nn[k] * il;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    g.lo[k] = std::min({t[0][k], t[1][k], t[2][k], t[3][k]});
+    g.hi[k] = std::max({t[0][k], t[1][k], t[2][k], t[3][k]});
+  }
+  return g;
+}
+
+// A polygon vertex: position and the target's 4 barycentric coordinates there (interpolated along edges,
+// which is exact for affine functions and keeps the clipping consistent with the integration).
+struct Vertex {
+  double x[3];
+  double b[4];
+};
+constexpr int kMaxVertices = 16;  // 3 + 4 (outer planes) + 3 (sub-tet planes) = 10 at most
+struct Polygon {
+  Vertex v[kMaxVertices];
+  int n = 0;
+};
+
+// Sutherland-Hodgman against the half-space s(v) >= 0, s affine in the barycentric coordinates:
+// s = b[i] - b[j] (j >= 0) or s = b[i] (j < 0).
+inline double side(const Vertex& v, int i, int j) {
+  return j < 0 ? v.b[i] : v.b[i] - v.b[j];
+}
+void clip(const Polygon& in, int i, int j, Polygon& out) {
+  out.n = 0;
+  if (in.n == 0) return;
+  for (int k = 0; k < in.n; ++k) {
+    const Vertex& a = in.v[k];
+    const Vertex& b = in.v[(k + 1) % in.n];
+    const double sa = side(a, i, j), sb = side(b, i, j);
+    if (sa >= 0.0) out.v[out.n++] = a;
+    if ((sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0)) {
+      const double t = sa / (sa - sb);
+      Vertex& c = out.v[out.n++];
+      for (int d = 0; d < 3; ++d) c.x[d] = a.x[d] + t * (b.x[d] - a.x[d]);
+      for (int d = 0; d < 4; ++d) c.b[d] = a.b[d] + t * (b.b[d] - a.b[d]);
+    }
+  }
+  if (out.n < 3) out.n = 0;
+}
+
+// ∫_P phi dA and ∫_P x phi dA over a planar polygon with vertex values phi, n its plane's unit normal
+// (areas signed by n; the clipped face polygons keep the face's orientation).
+void integrate(const Polygon& p, int j, const double n[3], double& I, double m[3]) {
+  I = 0.0;
+  m[0] = m[1] = m[2] = 0.0;
+  const Vertex& v0 = p.v[0];
+  const double phi0 = 4.0 * v0.b[j];
+  for (int k = 1; k + 1 < p.n; ++k) {
+    const Vertex& v1 = p.v[k];
+    const Vertex& v2 = p.v[k + 1];
+    double e1[3], e2[3], c[3];
+    for (int d = 0; d < 3; ++d) {
+      e1[d] = v1.x[d] - v0.x[d];
+      e2[d] = v2.x[d] - v0.x[d];
+    }
+    cross(e1, e2, c);
+    const double area = 0.5 * dot(c, n);
+    const double phi1 = 4.0 * v1.b[j], phi2 = 4.0 * v2.b[j];
+    const double s = phi0 + phi1 + phi2;
+    I += area * s / 3.0;
+    for (int d = 0; d < 3; ++d)
+      m[d] += area / 12.0 *
+              (phi0 * v0.x[d] + phi1 * v1.x[d] + phi2 * v2.x[d] + s * (v0.x[d] + v1.x[d] + v2.x[d]));
+  }
+}
+
+// Contactor C's faces against target T's sub-tets (the first boundary term). fc, ft: the corner forces of
+// C and T, accumulated.
+void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][3], double ft[4][3],
+             TetPairForce& out) {
+  for (int f = 0; f < 4; ++f) {
+    const double* n = C.n[f];
+    Polygon face, a, b;
+    face.n = 3;
+    for (int k = 0; k < 3; ++k) {
+      Vertex& v = face.v[k];
+      for (int d = 0; d < 3; ++d) v.x[d] = C.x[C.face[f][k]][d];
+      T.bary(v.x, v.b);
+    }
+    // face ∩ T: the 4 outer half-spaces B_j >= 0.
+    clip(face, 0, -1, a);
+    clip(a, 1, -1, b);
+    clip(b, 2, -1, a);
+    clip(a, 3, -1, face);
+    if (face.n == 0) continue;
+    for (int j = 0; j < 4; ++j) {  // sub-tet j: B_i >= B_j for the 3 corners i != j
+      const int i0 = (j + 1) % 4, i1 = (j + 2) % 4, i2 = (j + 3) % 4;
+      clip(face, i0, j, a);
+      clip(a, i1, j, b);
+      clip(b, i2, j, a);
+      if (a.n == 0) continue;
+      double I, m[3];
+      integrate(a, j, n, I, m);
+      if (!(I > 0.0)) continue;
+      const double F = p * I;
+      double xf[3], bc[4], bt[4];
+      for (int d = 0; d < 3; ++d) xf[d] = m[d] / I;
+      // The consistent distribution: C's corners by C's barycentric coordinates at x_F (the face's, as x_F
+      // lies on it), T's by T's (the sub-tet's, with g_T's share split 1/4 each: L_i + L_g / 4 = B_i).
+      C.bary(xf, bc);
+      T.bary(xf, bt);
+      for (int c = 0; c < 4; ++c)
+        for (int d = 0; d < 3; ++d) {
+          fc[c][d] -= F * n[d] * bc[c];
+          ft[c][d] += F * n[d] * bt[c];
+        }
+      for (int d = 0; d < 3; ++d) out.centre[d] += F * xf[d];
+      out.weight += F;
+      ++out.polygons;
+    }
+  }
+}
+
+inline bool boxes_overlap(const TetGeometry& a, const TetGeometry& b) {
+  for (int k = 0; k < 3; ++k)
+    if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
+  return true;
+}
+
+}  // namespace
+
+TetPairForce tet_pair_potential_force(const double a[4][3], const double b[4][3], double penalty) {
+  TetPairForce out{};
+  const TetGeometry A = tet_geometry(a), B = tet_geometry(b);
+  if (!A.ok || !B.ok || !boxes_overlap(A, B)) return out;
+  double fa[4][3] = {}, fb[4][3] = {};
+  one_way(A, B, penalty, fa, fb, out);
+  one_way(B, A, penalty, fb, fa, out);
+  for (int c = 0; c < 4; ++c)
+    for (int d = 0; d < 3; ++d) {
+      out.f[c][d] = fa[c][d];
+      out.f[4 + c][d] = fb[c][d];
+      out.normal[d] += fa[c][d];
+    }
+  if (out.weight > 0.0)
+    for (double& c : out.centre) c /= out.weight;
+  return out;
+}
+
+double tet_potential(const double tet[4][3], const double x[3]) {
+  const TetGeometry g = tet_geometry(tet);
+  if (!g.ok) return 0.0;
+  double b[4];
+  g.bary(x, b);
+  return std::max(0.0, 4.0 * std::min({b[0], b[1], b[2], b[3]}));
+}
+
+FrictionStep coulomb_friction_update(double history[3], const double n[3], double f_n, const double du[3],
+                                     double k_t, double mu) {
+  FrictionStep s{{0.0, 0.0, 0.0}, 0.0, false};
+  // The stored force, turned into the current tangent plane with its length kept.
+  const double len0 = std::sqrt(dot(history, history));
+  const double hn = dot(history, n);
+  double h[3];
+  for (int d = 0; d < 3; ++d) h[d] = history[d] - hn * n[d];
+  const double len1 = std::sqrt(dot(h, h));
+  if (len1 > 0.0)
+    for (double& v : h) v *= len0 / len1;
+  // Elastic trial, then the Coulomb cap.
+  const double dn = dot(du, n);
+  double trial[3];
+  for (int d = 0; d < 3; ++d) trial[d] = h[d] - k_t * (du[d] - dn * n[d]);
+  const double t = std::sqrt(dot(trial, trial));
+  const double cap = mu * std::max(f_n, 0.0);
+  double scale = 1.0;
+  if (t > cap) {
+    scale = t > 0.0 ? cap / t : 0.0;
+    s.slip = true;
+    s.dissipation = k_t > 0.0 ? cap * (t - cap) / k_t : 0.0;
+  }
+  for (int d = 0; d < 3; ++d) {
+    history[d] = trial[d] * scale;
+    s.force[d] = history[d];
+  }
+  return s;
+}
+
+ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) {
+  ContactStatus st;
+  const ContactLaw& law = args.law;
+  const bool friction = law.tangential_stiffness > 0.0 && !args.history.empty();
+  const bool damping = law.normal_damping > 0.0;
+  for (size_t q = begin; q < end; ++q) {
+    const ContactPair pr = args.pairs[q];
+    const int32_t* na = &args.tet_nodes[4 * static_cast<size_t>(pr.a)];
+    const int32_t* nb = &args.tet_nodes[4 * static_cast<size_t>(pr.b)];
+    double xa[4][3], xb[4][3];
+    for (int c = 0; c < 4; ++c)
+      for (int d = 0; d < 3; ++d) {
+        xa[c][d] = args.x[3 * static_cast<size_t>(na[c]) + d];
+        xb[c][d] = args.x[3 * static_cast<size_t>(nb[c]) + d];
+      }
+    TetPairForce r = tet_pair_potential_force(xa, xb, law.penalty);
+    double* out = &args.pair_force[24 * q];
+    const double fn = std::sqrt(dot(r.normal, r.normal));
+    double fric_diss = 0.0, damp_diss = 0.0;
+    if (!(fn > 0.0)) {
+      if (friction) std::fill_n(&args.history[3 * q], 3, 0.0);
+    } else {
+      ++st.touching;
+      if (friction || damping) {
+        double n[3], vrel[3] = {0.0, 0.0, 0.0};
+        for (int d = 0; d < 3; ++d) n[d] = r.normal[d] / fn;
+        const TetGeometry A = tet_geometry(xa), B = tet_geometry(xb);
+        double ba[4], bb[4];
+        A.bary(r.centre, ba);
+        B.bary(r.centre, bb);
+        if (!args.v.empty())
+          for (int c = 0; c < 4; ++c)
+            for (int d = 0; d < 3; ++d)
+              vrel[d] += ba[c] * args.v[3 * static_cast<size_t>(na[c]) + d] -
+                         bb[c] * args.v[3 * static_cast<size_t>(nb[c]) + d];
+        double extra[3] = {0.0, 0.0, 0.0};  // friction + damping force on A, applied at x_c
+        if (friction) {
+          double du[3];
+          for (int d = 0; d < 3; ++d) du[d] = vrel[d] * args.dt;
+          const FrictionStep fs = coulomb_friction_update(&args.history[3 * q], n, fn, du,
+                                                          law.tangential_stiffness, law.friction);
+          for (int d = 0; d < 3; ++d) extra[d] += fs.force[d];
+          fric_diss = fs.dissipation;
+          if (fs.slip) ++st.sliding;
+        }
+        if (damping) {
+          const double vn = dot(vrel, n);
+          const double fd = std::max(-law.normal_damping * vn, -fn);
+          for (int d = 0; d < 3; ++d) extra[d] += fd * n[d];
+          damp_diss = -fd * vn * args.dt;
+        }
+        for (int c = 0; c < 4; ++c)
+          for (int d = 0; d < 3; ++d) {
+            r.f[c][d] += ba[c] * extra[d];
+            r.f[4 + c][d] -= bb[c] * extra[d];
+          }
+      }
+    }
+    for (int c = 0; c < 8; ++c)
+      for (int d = 0; d < 3; ++d) out[3 * c + d] = r.f[c][d];
+    if (!args.normal_force.empty()) args.normal_force[q] = fn;
+    if (!args.friction_dissipation.empty()) args.friction_dissipation[q] = fric_diss;
+    if (!args.damping_dissipation.empty()) args.damping_dissipation[q] = damp_diss;
+  }
+  return st;
+}
+
+void contact_gather(std::span<const ContactPair> pairs, std::span<const int32_t> tet_nodes,
+                    std::span<const double> pair_force, std::span<double> node_force) {
+  for (size_t q = 0; q < pairs.size(); ++q) {
+    const int32_t tets[2] = {pairs[q].a, pairs[q].b};
+    for (int s = 0; s < 2; ++s)
+      for (int c = 0; c < 4; ++c) {
+        const size_t node = static_cast<size_t>(tet_nodes[4 * static_cast<size_t>(tets[s]) + c]);
+        for (int d = 0; d < 3; ++d) node_force[3 * node + d] += pair_force[24 * q + 3 * (4 * s + c) + d];
+      }
+  }
+}
+
+}  // namespace rift::kernels

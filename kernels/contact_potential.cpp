@@ -89,6 +89,7 @@ struct Vertex {
   double x[3];
   double b[4];
 };
+constexpr double kSnap = 1e-12;
 constexpr int kMaxVertices = 16;  // 3 + 4 (outer planes) + 3 (sub-tet planes) = 10 at most
 struct Polygon {
   Vertex v[kMaxVertices];
@@ -156,6 +157,10 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
       Vertex& v = face.v[k];
       for (int d = 0; d < 3; ++d) v.x[d] = C.x[C.face[f][k]][d];
       T.bary(v.x, v.b);
+      // A corner on a target face plane (coplanar neighbours) gets exactly 0 there, not +-1e-17: no
+      // round-off force between touching tets. Shifts phi by < 1e-12, negligible against any real overlap.
+      for (double& bj : v.b)
+        if (std::abs(bj) < kSnap) bj = 0.0;
     }
     // face ∩ T: the 4 outer half-spaces B_j >= 0.
     clip(face, 0, -1, a);

@@ -32,7 +32,8 @@
 // corner forces are not claimed to be the exact gradient then). The kernel does not compute E (a volume
 // integral over the polyhedral overlap); tet_potential() gives phi for tests.
 // Contactor faces lying exactly in a plane between two target sub-tets are counted in both (measure zero in
-// motion; faces in a target *face* plane get phi_T = 0, so touching neighbours give no force).
+// motion; faces in a target *face* plane get phi_T = 0, so touching neighbours give no force: barycentric
+// coordinates within 1e-12 of 0 at the contactor face corners are set to 0 for that).
 //
 // Friction and damping (per pair, on top of the potential). With F_A the total potential force on tet A
 // (A = pair.a), the pair's normal is n = F_A / |F_A| (from B into A), f_n = |F_A|, and its contact point x_c

@@ -80,11 +80,14 @@ TEST(ContactPotential, NoOverlapNoForce) {
   for (int c = 0; c < 4; ++c)
     for (int d = 0; d < 3; ++d) b[c][d] = 1.0 - a[c][d] + 0.01;
   EXPECT_EQ(max_abs(pair_force(a, b, kP)), 0.0);
-  // Face to face neighbours (mirror through the face x + y + z = 1 shared exactly is awkward in floats;
-  // use the plane x = 0): phi_target = 0 on the shared face, so the force is zero up to round-off.
+  // Face to face neighbours: phi_target = 0 on the shared face, so the force is zero.
   Tet m = a;
   for (auto& v : m) v[0] = -v[0];
-  EXPECT_LT(max_abs(pair_force(a, m, kP)), kP * 1e-14);
+  EXPECT_EQ(max_abs(pair_force(a, m, kP)), 0.0);
+  // The same with a face in a slanted plane (coordinates not exact there): still exactly zero.
+  Tet s = a;  // reflect corner 0 through the plane x + y + z = 1 of the face (1, 2, 3)
+  s[0] = {2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0};
+  EXPECT_EQ(max_abs(pair_force(a, s, kP)), 0.0);
 }
 
 TEST(ContactPotential, ForceAndMomentBalance) {

@@ -83,10 +83,10 @@ TetGeometry tet_geometry(const double t[4][3]) {
   return g;
 }
 
-// A polygon vertex: position and the target's 4 barycentric coordinates there (interpolated along edges,
-// which is exact for affine functions and keeps the clipping consistent with the integration).
+// A polygon vertex: the target's 4 barycentric coordinates there (interpolated along edges, which is
+// exact for affine functions and keeps the clipping consistent with the integration); its position is
+// sum_i b_i X_i over the target's corners, formed only when the polygon is integrated.
 struct Vertex {
-  double x[3];
   double b[4];
 };
 constexpr double kSnap = 1e-12;
@@ -97,51 +97,67 @@ struct Polygon {
 };
 
 // Sutherland-Hodgman against the half-space s(v) >= 0, s affine in the barycentric coordinates:
-// s = b[i] - b[j] (j >= 0) or s = b[i] (j < 0).
+// s = b[i] (kOuter: a target face plane) or s = b[i] - b[j] (a plane between two sub-tets).
+template <bool kOuter>
 inline double side(const Vertex& v, int i, int j) {
-  return j < 0 ? v.b[i] : v.b[i] - v.b[j];
+  if constexpr (kOuter)
+    return v.b[i];
+  else
+    return v.b[i] - v.b[j];
 }
-void clip(const Polygon& in, int i, int j, Polygon& out) {
-  out.n = 0;
-  if (in.n == 0) return;
-  for (int k = 0; k < in.n; ++k) {
-    const Vertex& a = in.v[k];
-    const Vertex& b = in.v[(k + 1) % in.n];
-    const double sa = side(a, i, j), sb = side(b, i, j);
-    if (sa >= 0.0) out.v[out.n++] = a;
-    if ((sa > 0.0 && sb < 0.0) || (sa < 0.0 && sb > 0.0)) {
-      const double t = sa / (sa - sb);
-      Vertex& c = out.v[out.n++];
-      for (int d = 0; d < 3; ++d) c.x[d] = a.x[d] + t * (b.x[d] - a.x[d]);
-      for (int d = 0; d < 4; ++d) c.b[d] = a.b[d] + t * (b.b[d] - a.b[d]);
-    }
+// Returns the clipped polygon: `in` itself when no vertex is outside, else `out` (n = 0 when empty).
+template <bool kOuter>
+inline const Polygon* clip(const Polygon* in, int i, int j, Polygon* out) {
+  const int n = in->n;
+  double sd[kMaxVertices];
+  bool any_out = false, any_in = false;
+  for (int k = 0; k < n; ++k) {
+    sd[k] = side<kOuter>(in->v[k], i, j);
+    any_out |= sd[k] < 0.0;
+    any_in |= sd[k] > 0.0;
   }
-  if (out.n < 3) out.n = 0;
+  if (!any_out) return in;
+  out->n = 0;
+  if (!any_in) return out;
+  int prev = n - 1;
+  for (int k = 0; k < n; ++k) {
+    const double sp = sd[prev], sc = sd[k];
+    if ((sp > 0.0 && sc < 0.0) || (sp < 0.0 && sc > 0.0)) {  // the edge prev -> k crosses the plane
+      const double t = sp / (sp - sc);
+      Vertex& c = out->v[out->n++];
+      for (int d = 0; d < 4; ++d) c.b[d] = in->v[prev].b[d] + t * (in->v[k].b[d] - in->v[prev].b[d]);
+    }
+    if (sc >= 0.0) out->v[out->n++] = in->v[k];
+    prev = k;
+  }
+  if (out->n < 3) out->n = 0;
+  return out;
 }
 
 // ∫_P phi dA and ∫_P x phi dA over a planar polygon with vertex values phi, n its plane's unit normal
 // (areas signed by n; the clipped face polygons keep the face's orientation).
-void integrate(const Polygon& p, int j, const double n[3], double& I, double m[3]) {
+void integrate(const Polygon& p, const double X[4][3], int j, const double n[3], double& I, double m[3]) {
   I = 0.0;
   m[0] = m[1] = m[2] = 0.0;
-  const Vertex& v0 = p.v[0];
-  const double phi0 = 4.0 * v0.b[j];
+  double x[kMaxVertices][3];
+  for (int k = 0; k < p.n; ++k)
+    for (int d = 0; d < 3; ++d)
+      x[k][d] = p.v[k].b[0] * X[0][d] + p.v[k].b[1] * X[1][d] + p.v[k].b[2] * X[2][d] + p.v[k].b[3] * X[3][d];
+  const double phi0 = 4.0 * p.v[0].b[j];
   for (int k = 1; k + 1 < p.n; ++k) {
-    const Vertex& v1 = p.v[k];
-    const Vertex& v2 = p.v[k + 1];
     double e1[3], e2[3], c[3];
     for (int d = 0; d < 3; ++d) {
-      e1[d] = v1.x[d] - v0.x[d];
-      e2[d] = v2.x[d] - v0.x[d];
+      e1[d] = x[k][d] - x[0][d];
+      e2[d] = x[k + 1][d] - x[0][d];
     }
     cross(e1, e2, c);
     const double area = 0.5 * dot(c, n);
-    const double phi1 = 4.0 * v1.b[j], phi2 = 4.0 * v2.b[j];
+    const double phi1 = 4.0 * p.v[k].b[j], phi2 = 4.0 * p.v[k + 1].b[j];
     const double s = phi0 + phi1 + phi2;
     I += area * s / 3.0;
     for (int d = 0; d < 3; ++d)
       m[d] += area / 12.0 *
-              (phi0 * v0.x[d] + phi1 * v1.x[d] + phi2 * v2.x[d] + s * (v0.x[d] + v1.x[d] + v2.x[d]));
+              (phi0 * x[0][d] + phi1 * x[k][d] + phi2 * x[k + 1][d] + s * (x[0][d] + x[k][d] + x[k + 1][d]));
   }
 }
 
@@ -151,31 +167,29 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
              TetPairForce& out) {
   for (int f = 0; f < 4; ++f) {
     const double* n = C.n[f];
-    Polygon face, a, b;
+    Polygon face;
     face.n = 3;
     for (int k = 0; k < 3; ++k) {
       Vertex& v = face.v[k];
-      for (int d = 0; d < 3; ++d) v.x[d] = C.x[C.face[f][k]][d];
-      T.bary(v.x, v.b);
+      T.bary(C.x[C.face[f][k]], v.b);
       // A corner on a target face plane (coplanar neighbours) gets exactly 0 there, not +-1e-17: no
       // round-off force between touching tets. Shifts phi by < 1e-12, negligible against any real overlap.
       for (double& bj : v.b)
         if (std::abs(bj) < kSnap) bj = 0.0;
     }
-    // face ∩ T: the 4 outer half-spaces B_j >= 0.
-    clip(face, 0, -1, a);
-    clip(a, 1, -1, b);
-    clip(b, 2, -1, a);
-    clip(a, 3, -1, face);
-    if (face.n == 0) continue;
+    // face ∩ T: the 4 outer half-spaces B_j >= 0 (a corner with all 4 >= 0 needs no clipping).
+    Polygon buf[4];
+    const Polygon* q = &face;
+    for (int i = 0; i < 4 && q->n > 0; ++i) q = clip<true>(q, i, -1, &buf[i]);
+    if (q->n == 0) continue;
     for (int j = 0; j < 4; ++j) {  // sub-tet j: B_i >= B_j for the 3 corners i != j
-      const int i0 = (j + 1) % 4, i1 = (j + 2) % 4, i2 = (j + 3) % 4;
-      clip(face, i0, j, a);
-      clip(a, i1, j, b);
-      clip(b, i2, j, a);
-      if (a.n == 0) continue;
+      Polygon sub[3];
+      const Polygon* r = q;
+      for (int k = 1; k < 4 && r->n > 0; ++k) r = clip<false>(r, (j + k) % 4, j, &sub[k - 1]);
+      if (r->n == 0) continue;
+      const Polygon& a = *r;
       double I, m[3];
-      integrate(a, j, n, I, m);
+      integrate(a, T.x, j, n, I, m);
       if (!(I > 0.0)) continue;
       const double F = p * I;
       double xf[3], bc[4], bt[4];

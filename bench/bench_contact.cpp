@@ -2,15 +2,16 @@
 // box_self_intersection_d on the same boxes, and the narrow phase (contact_potential.hpp) on overlapping
 // tet pairs at 1 and 2 threads.
 //
-// Boxes: the bounding boxes of bench_common's perturbed Kuhn mesh (5 mm cells, ~2e3 / 1e4 / 1e5 / 1e6 tets;
-// the counter "boxes" gives the exact number), buffer 0.25 mm: each box meets ~60 others, as the tets of a
-// real mesh do (neighbours share nodes, so their boxes overlap). All three methods report the same pair
-// set (counter "pairs"; the CGAL callback collects the pairs and sorts them, so that its output is the
-// same sorted list as ours; "pairs" is compared and the benchmark fails with an error if it differs).
-// CGAL reorders its input, so each iteration copies the boxes first (included in its time, ~1 % of it).
-// Byte model of a broad-phase box (compulsory traffic, bytes/s counter): box 48 B + id 4 B read, and 8 B
-// per output pair written (x 2 with write-allocate) = 52 + 16 pairs/box; the scratch (sorted entries and
-// boxes) is not counted. The kernel is not bandwidth-bound (roofline_frac ~ 0.01): items/s is the figure.
+// Boxes (argument "cloud"): 0 = the bounding boxes of bench_common's perturbed Kuhn mesh (5 mm cells,
+// ~2e3 / 1e4 / 1e5 / 1e6 tets; the counter "boxes" gives the exact number): a Kuhn tet's box is its whole
+// cell, so each box meets ~70 others and the output dominates; 1 = a uniform random cloud of tet-sized
+// boxes (random_cloud below, ~2 pairs per box), where the binning itself dominates. Buffer 0.25 mm. All three
+// methods report the same pair set (counter "pairs"; the CGAL callback collects the pairs and sorts them, so
+// that its output is the same sorted list as ours; "pairs" is compared and the benchmark fails with an error
+// if it differs). CGAL reorders its input, so each iteration copies the boxes first (included in its time, ~1
+// % of it). Byte model of a broad-phase box (compulsory traffic, bytes/s counter): box 48 B + id 4 B read,
+// and 8 B per output pair written (x 2 with write-allocate) = 52 + 16 pairs/box; the scratch (sorted entries
+// and boxes) is not counted. The kernel is not bandwidth-bound (roofline_frac ~ 0.01): items/s is the figure.
 //
 // Narrow phase: pairs of random tets of ~5 mm with private nodes (8 per pair, pair after pair in memory),
 // B offset from A by up to 0.3 of the size, so ~90 % overlap (counter "touching"). Byte model per pair:
@@ -51,12 +52,39 @@ struct BoxSet {
   BroadPhaseArgs args() const { return {ids, lo, hi, kBuffer, {}}; }
 };
 
-const BoxSet& boxes(size_t target) {
-  static std::map<size_t, std::unique_ptr<BoxSet>> cache;
-  auto& slot = cache[target];
+// A uniform random cloud of n tet-sized boxes: edges uniform in [2.5, 5] mm per axis, lower corners
+// uniform in a cube holding one box per (5 mm)^3 (a sixth of the mesh's density): ~2 pairs per box.
+void random_cloud(size_t n, BoxSet& b) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double side = 5e-3 * std::cbrt(static_cast<double>(n));
+  b.n = n;
+  b.ids.resize(n);
+  b.lo.resize(3 * n);
+  b.hi.resize(3 * n);
+  for (size_t i = 0; i < n; ++i) {
+    b.ids[i] = static_cast<int32_t>(i);
+    for (int k = 0; k < 3; ++k) {
+      b.lo[3 * i + k] = side * u(rng);
+      b.hi[3 * i + k] = b.lo[3 * i + k] + 2.5e-3 * (1.0 + u(rng));
+    }
+  }
+}
+
+enum Source : int64_t { mesh = 0, cloud = 1 };
+
+const BoxSet& boxes(size_t target, int64_t source = mesh) {
+  static std::map<std::pair<size_t, int64_t>, std::unique_ptr<BoxSet>> cache;
+  const std::pair<size_t, int64_t> key{target, source};
+  auto& slot = cache[key];
   if (!slot) {
-    for (auto& [t, b] : cache)
-      if (t != target && b && b->n >= 500000) b.reset();  // hold one large set at a time
+    for (auto& [k, b] : cache)
+      if (k != key && b && b->n >= 500000) b.reset();  // hold one large set at a time
+    if (source == cloud) {
+      slot = std::make_unique<BoxSet>();
+      random_cloud(target, *slot);
+      return *slot;
+    }
     const rift::bench::BenchMesh m = rift::bench::make_tet_mesh(target, rift::bench::NodeLayout::shared);
     slot = std::make_unique<BoxSet>();
     BoxSet& b = *slot;
@@ -72,21 +100,26 @@ const BoxSet& boxes(size_t target) {
   return *slot;
 }
 
+// Arguments {boxes, source}: source 0 = mesh tets, 1 = uniform cloud.
 void broad_sizes(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"boxes"});
-  if (rift::bench::tiny()) {
-    b->Arg(1000);
-    return;
+  b->ArgNames({"boxes", "cloud"});
+  for (int64_t source : {mesh, cloud}) {
+    if (rift::bench::tiny()) {
+      b->Args({1000, source});
+      continue;
+    }
+    for (int64_t n : {2000, 10000, 100000, 1000000}) b->Args({n, source});
   }
-  for (int64_t n : {2000, 10000, 100000, 1000000}) b->Arg(n);
 }
 void brute_sizes(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"boxes"});
-  if (rift::bench::tiny()) {
-    b->Arg(1000);
-    return;
+  b->ArgNames({"boxes", "cloud"});
+  for (int64_t source : {mesh, cloud}) {
+    if (rift::bench::tiny()) {
+      b->Args({1000, source});
+      continue;
+    }
+    for (int64_t n : {2000, 10000}) b->Args({n, source});
   }
-  for (int64_t n : {2000, 10000}) b->Arg(n);
 }
 
 void report_broad(benchmark::State& state, const BoxSet& b, size_t pairs) {
@@ -103,7 +136,7 @@ size_t reference_pairs(const BoxSet& b) {
 }
 
 void BM_BroadPhase(benchmark::State& state) {
-  const BoxSet& b = boxes(static_cast<size_t>(state.range(0)));
+  const BoxSet& b = boxes(static_cast<size_t>(state.range(0)), state.range(1));
   BroadPhaseWorkspace ws;
   rift::kernels::contact_broad_phase(b.args(), ws);  // warm: capacities in place
   rift::kernels::BroadPhaseStats st;
@@ -117,7 +150,7 @@ void BM_BroadPhase(benchmark::State& state) {
 }
 
 void BM_BroadPhaseBruteForce(benchmark::State& state) {
-  const BoxSet& b = boxes(static_cast<size_t>(state.range(0)));
+  const BoxSet& b = boxes(static_cast<size_t>(state.range(0)), state.range(1));
   size_t pairs = 0;
   for (auto _ : state) {
     const auto p = rift::kernels::contact_broad_phase_brute_force(b.args());
@@ -130,7 +163,7 @@ void BM_BroadPhaseBruteForce(benchmark::State& state) {
 
 void BM_BroadPhaseCgal(benchmark::State& state) {
   using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int32_t>;
-  const BoxSet& b = boxes(static_cast<size_t>(state.range(0)));
+  const BoxSet& b = boxes(static_cast<size_t>(state.range(0)), state.range(1));
   const double h = 0.5 * kBuffer;
   std::vector<Box> master;
   master.reserve(b.n);

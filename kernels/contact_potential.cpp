@@ -23,6 +23,7 @@ struct TetGeometry {
   double grad[4][3], c[4];
   int face[4][3];  // face j: the corners other than j, ordered so that the right-hand normal points out
   double n[4][3];  // outward unit normal of face j
+  double g[3];     // centroid
   double lo[3], hi[3];
   bool ok;  // volume non-zero and finite
 
@@ -77,6 +78,7 @@ TetGeometry tet_geometry(const double t[4][3]) {
     }
   }
   for (int k = 0; k < 3; ++k) {
+    g.g[k] = 0.25 * (t[0][k] + t[1][k] + t[2][k] + t[3][k]);
     g.lo[k] = std::min({t[0][k], t[1][k], t[2][k], t[3][k]});
     g.hi[k] = std::max({t[0][k], t[1][k], t[2][k], t[3][k]});
   }
@@ -136,9 +138,16 @@ inline const Polygon* clip(const Polygon* in, int i, int j, Polygon* out) {
 
 // ∫_P phi dA and ∫_P x phi dA over a planar polygon with vertex values phi, n its plane's unit normal
 // (areas signed by n; the clipped face polygons keep the face's orientation).
-void integrate(const Polygon& p, const double X[4][3], int j, const double n[3], double& I, double m[3]) {
-  I = 0.0;
-  m[0] = m[1] = m[2] = 0.0;
+// Also its area and ∫_P x dA, for the overlap energy.
+struct PolygonIntegrals {
+  double I, m[3];      // ∫ phi dA, ∫ x phi dA
+  double area, xa[3];  // ∫ dA, ∫ x dA
+};
+void integrate(const Polygon& p, const double X[4][3], int j, const double n[3], PolygonIntegrals& r) {
+  double& I = r.I;
+  double* m = r.m;
+  I = r.area = 0.0;
+  for (int d = 0; d < 3; ++d) m[d] = r.xa[d] = 0.0;
   double x[kMaxVertices][3];
   for (int k = 0; k < p.n; ++k)
     for (int d = 0; d < 3; ++d)
@@ -155,6 +164,8 @@ void integrate(const Polygon& p, const double X[4][3], int j, const double n[3],
     const double phi1 = 4.0 * p.v[k].b[j], phi2 = 4.0 * p.v[k + 1].b[j];
     const double s = phi0 + phi1 + phi2;
     I += area * s / 3.0;
+    r.area += area;
+    for (int d = 0; d < 3; ++d) r.xa[d] += area / 3.0 * (x[0][d] + x[k][d] + x[k + 1][d]);
     for (int d = 0; d < 3; ++d)
       m[d] += area / 12.0 *
               (phi0 * x[0][d] + phi1 * x[k][d] + phi2 * x[k + 1][d] + s * (x[0][d] + x[k][d] + x[k + 1][d]));
@@ -167,6 +178,9 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
              TetPairForce& out) {
   for (int f = 0; f < 4; ++f) {
     const double* n = C.n[f];
+    double rel[3];
+    for (int d = 0; d < 3; ++d) rel[d] = C.x[C.face[f][0]][d] - C.g[d];
+    const double h_face = dot(rel, n);  // distance of the face plane from C's centroid
     Polygon face;
     face.n = 3;
     for (int k = 0; k < 3; ++k) {
@@ -188,9 +202,16 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
       for (int k = 1; k < 4 && r->n > 0; ++k) r = clip<false>(r, (j + k) % 4, j, &sub[k - 1]);
       if (r->n == 0) continue;
       const Polygon& a = *r;
-      double I, m[3];
-      integrate(a, T.x, j, n, I, m);
+      PolygonIntegrals pi;
+      integrate(a, T.x, j, n, pi);
+      const double I = pi.I;
+      const double* m = pi.m;
       if (!(I > 0.0)) continue;
+      // Overlap energy, this piece of the boundary of c∩t (see the header): phi_C = 0 here, so
+      //   ∫_P [(x - g_C).n / 12 + (x - g_T).n (phi_T / 4 + 1 / 12)] dA, (x - g_C).n = h_face constant.
+      const double gt_n = dot(T.g, n);
+      out.energy += p * (h_face * pi.area / 12.0 + 0.25 * (dot(n, m) - gt_n * I) +
+                         (dot(n, pi.xa) - gt_n * pi.area) / 12.0);
       const double F = p * I;
       double xf[3], bc[4], bt[4];
       for (int d = 0; d < 3; ++d) xf[d] = m[d] / I;
@@ -335,6 +356,7 @@ ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) 
     for (int c = 0; c < 8; ++c)
       for (int d = 0; d < 3; ++d) out[3 * c + d] = r.f[c][d];
     if (!args.normal_force.empty()) args.normal_force[q] = fn;
+    if (!args.energy.empty()) args.energy[q] = r.energy;
     if (!args.friction_dissipation.empty()) args.friction_dissipation[q] = fric_diss;
     if (!args.damping_dissipation.empty()) args.damping_dissipation[q] = damp_diss;
   }

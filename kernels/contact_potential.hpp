@@ -29,8 +29,13 @@
 //   E = p ∫_{c∩t} (phi_c + phi_t) dV
 // (Reynolds on the two boundary terms above), so the work around a closed path is zero: the potential is
 // conservative for any p, as femdem.md 1c states (for deforming tets phi itself moves with the nodes; the
-// corner forces are not claimed to be the exact gradient then). The kernel does not compute E (a volume
-// integral over the polyhedral overlap); tet_potential() gives phi for tests.
+// corner forces are not claimed to be the exact gradient then).
+// E from the same polygons: in each sub-tet phi - 1 is linear and 0 at g, so G = (x - g)(phi / 4 + 1 / 12)
+// is continuous with div G = phi, and ∫_{c∩t} phi_c dV = ∮_{∂(c∩t)} G_c . n dA. ∂(c∩t) is made of the
+// polygons of both ways; on C's face polygons phi_C = 0 and (x - g_C).n = h (the face's distance from g_C),
+// so each polygon adds p ∫_P [h / 12 + (x - g_T).n (phi_T / 4 + 1 / 12)] dA, a quadratic integrand
+// integrated exactly with the same fan (∫ u w dA = A / 12 (sum u_v w_v + sum u_v sum w_v) on a triangle).
+// tet_potential() gives phi for tests.
 // Contactor faces lying exactly in a plane between two target sub-tets are counted in both (measure zero in
 // motion; faces in a target *face* plane get phi_T = 0, so touching neighbours give no force: barycentric
 // coordinates within 1e-12 of 0 at the contactor face corners are set to 0 for that).
@@ -68,6 +73,7 @@ struct TetPairForce {
   double normal[3];  // sum of A's corner forces, F_A [N]
   double centre[3];  // x_c, the F-weighted mean force centre (valid when weight > 0)
   double weight;     // sum of the contributions' F [N]: 0 when the tets do not overlap
+  double energy;     // E = p ∫_{A∩B} (phi_A + phi_B) dV [J] (see above)
   int polygons;      // number of non-empty (face, sub-tet) polygons
 };
 
@@ -110,6 +116,7 @@ struct ContactArgs {
   std::span<double> normal_force = {};          // f_n = |F_A| [N]
   std::span<double> friction_dissipation = {};  // this step's frictional dissipation [J]
   std::span<double> damping_dissipation = {};   // this step's normal-damping dissipation [J]
+  std::span<double> energy = {};                // overlap energy E of the potential [J]
 };
 
 struct ContactStatus {

@@ -2,7 +2,8 @@
 // without overlap, force and moment balance, contactor/target symmetry, a vertex pushed into a face (along
 // the face normal, exact cubic growth with depth), conservation (zero work round closed paths, and the
 // work equals the overlap energy p ∫(phi_A + phi_B) dV integrated on a grid), and the friction law (stick,
-// slip at the cap, dissipation = cap x slip distance) alone and through contact_forces.
+// slip at the cap, dissipation = cap x slip distance) alone and through contact_forces. The kernel's
+// overlap energy is checked against the grid integral and as the potential of the force.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -247,6 +248,44 @@ TEST(ContactPotential, WorkEqualsOverlapEnergy) {
   ASSERT_GT(work, 0.0);
   EXPECT_NEAR(work / energy, 1.0, 5e-3) << "work " << work << " energy " << energy;
   RecordProperty("work_over_grid_energy", testing::PrintToString(work / energy));
+  // The kernel's E (exact, from the boundary polygons) against both.
+  const double e_kernel = pair_force(ae, b, kP).energy;
+  EXPECT_NEAR(e_kernel / energy, 1.0, 5e-3);
+  EXPECT_NEAR(work / e_kernel, 1.0, 1e-5);  // the path quadrature error only (~1e-6)
+  RecordProperty("work_over_kernel_energy", testing::PrintToString(work / e_kernel));
+}
+
+// The force on A is minus the gradient of the kernel's E under translation of A (central differences), on
+// random overlapping pairs; E >= 0, E = 0 without overlap; E is symmetric in A and B.
+TEST(ContactPotential, ForceIsMinusEnergyGradient) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  int checked = 0;
+  for (int k = 0; k < 60; ++k) {
+    const double ca[3] = {0, 0, 0}, cb[3] = {u(rng), u(rng), u(rng)};
+    const Tet a = random_tet(rng, ca), b = random_tet(rng, cb);
+    const TetPairForce r = pair_force(a, b, kP);
+    EXPECT_GE(r.energy, 0.0);
+    EXPECT_NEAR(pair_force(b, a, kP).energy, r.energy, 1e-12 * std::max(r.energy, 1.0));
+    if (r.weight == 0.0) {
+      EXPECT_EQ(r.energy, 0.0);
+      continue;
+    }
+    const double fmag = std::hypot(r.normal[0], r.normal[1], r.normal[2]);
+    if (fmag < 1e-3 * kP) continue;  // barely touching: the difference step would leave the overlap
+    ++checked;
+    const double h = 1e-6;
+    for (int d = 0; d < 3; ++d) {
+      double up[3] = {0, 0, 0}, dn[3] = {0, 0, 0};
+      up[d] = h;
+      dn[d] = -h;
+      const double grad =
+          (pair_force(translated(a, up), b, kP).energy - pair_force(translated(a, dn), b, kP).energy) /
+          (2 * h);
+      EXPECT_NEAR(r.normal[d], -grad, 1e-5 * fmag) << k << " axis " << d;
+    }
+  }
+  EXPECT_GE(checked, 15);
 }
 
 TEST(ContactFriction, StickThenSlipAtTheCap) {

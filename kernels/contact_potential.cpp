@@ -363,6 +363,16 @@ ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) 
   return st;
 }
 
+void remap_pair_history(std::span<const ContactPair> old_pairs, std::span<const double> old_history,
+                        std::span<const ContactPair> new_pairs, std::span<double> new_history) {
+  size_t o = 0;
+  for (size_t q = 0; q < new_pairs.size(); ++q) {
+    while (o < old_pairs.size() && old_pairs[o] < new_pairs[q]) ++o;
+    const bool kept = o < old_pairs.size() && old_pairs[o] == new_pairs[q];
+    for (int d = 0; d < 3; ++d) new_history[3 * q + d] = kept ? old_history[3 * o + d] : 0.0;
+  }
+}
+
 void contact_gather(std::span<const ContactPair> pairs, std::span<const int32_t> tet_nodes,
                     std::span<const double> pair_force, std::span<double> node_force) {
   for (size_t q = 0; q < pairs.size(); ++q) {

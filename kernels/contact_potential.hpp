@@ -134,6 +134,13 @@ struct ContactStatus {
 // allocation.
 ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end);
 
+// After a re-detection: each pair's friction history (3 doubles) moves from the old list to the new one;
+// pairs only in the new list start at 0, pairs only in the old list are dropped. Both lists sorted
+// lexicographically (as contact_broad_phase returns them): one linear merge, no allocation. new_history
+// must not overlap old_history.
+void remap_pair_history(std::span<const ContactPair> old_pairs, std::span<const double> old_history,
+                        std::span<const ContactPair> new_pairs, std::span<double> new_history);
+
 // Sequential gather: node_force[3 node + k] += the pair forces of pairs [0, pairs.size()) in pair order
 // (deterministic). node_force is not cleared.
 void contact_gather(std::span<const ContactPair> pairs, std::span<const int32_t> tet_nodes,

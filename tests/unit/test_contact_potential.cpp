@@ -464,6 +464,19 @@ TEST(ContactPotential, SplitRangesAndGather) {
   for (double s : sum) EXPECT_LT(std::abs(s), 1e-11 * scale);
 }
 
+TEST(ContactFriction, HistoryFollowsThePairsAcrossRedetection) {
+  const std::vector<ContactPair> before = {{0, 1}, {0, 5}, {2, 3}, {4, 9}};
+  const std::vector<double> h_before = {1, 1, 1, 5, 5, 5, 23, 23, 23, 49, 49, 49};
+  const std::vector<ContactPair> after = {{0, 2}, {0, 5}, {2, 3}, {3, 4}, {4, 9}, {7, 8}};
+  std::vector<double> h_after(3 * after.size(), -1.0);
+  remap_pair_history(before, h_before, after, h_after);
+  EXPECT_EQ(h_after, (std::vector<double>{0, 0, 0, 5, 5, 5, 23, 23, 23, 0, 0, 0, 49, 49, 49, 0, 0, 0}));
+  std::vector<double> none;
+  remap_pair_history({}, {}, after, h_after);
+  EXPECT_EQ(*std::max_element(h_after.begin(), h_after.end()), 0.0);
+  remap_pair_history(before, h_before, {}, none);
+}
+
 // femdem.md 2, item 15, at kernel level: the same trajectories with detection at every step (buffer 0) as
 // with buffer-triggered detection (buffer b, re-detected only when some node has moved by more than b / 2
 // since the last detection). 27 rigid tets (each moved as a whole by the sum of its corner forces) thrown

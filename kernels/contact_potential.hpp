@@ -10,17 +10,20 @@
 // terms). The first term is "c as contactor, t as target", the second the same with the roles swapped:
 // each pair is processed both ways, and the force on t is the negative of the force on c.
 //
-// One way (contactor C, target T). For each of C's 4 faces (outward unit normal n, area > 0) and each of
-// T's 4 sub-tets S: the polygon P = face triangle ∩ S, obtained by clipping the triangle against S's 4
-// half-spaces (Sutherland-Hodgman on S's barycentric coordinates L_0..L_3, L_3 the weight of g_T). This is
-// the section of S by the face plane clipped to the face triangle (femdem.md 1c, steps 2-3), done by one
-// routine. On P the target potential is phi_T = L_3, linear, so (fanning P into triangles, exact):
+// One way (contactor C, target T). For each of C's 4 faces (outward unit normal n) and each of T's 4
+// sub-tets S_j: the polygon P = face triangle ∩ S_j (femdem.md 1c, steps 2-3: the section of S_j by the face
+// plane, clipped to the face triangle; here one Sutherland-Hodgman routine clips the triangle by half-spaces
+// instead, which gives the same polygon). Everything is carried in T's barycentric coordinates B_0..B_3: the
+// triangle is clipped once by T's faces (B_i >= 0), then per sub-tet by its 3 inner planes (B_i >= B_j);
+// on S_j the sub-tet coordinates are L_i = B_i - B_j (i != j) and L_g = 4 B_j = phi_T. phi_T is linear on
+// P, so (fanning P into triangles, exact):
 //   I = ∫_P phi_T dA = sum A_k (phi_0 + phi_k + phi_{k+1}) / 3,  m = ∫_P x phi_T dA = sum A_k / 12
 //   (sum_v phi_v x_v + (sum_v phi_v)(sum_v x_v)),   force centre x_F = m / I,   F = p I.
-// The load -p phi_T n on C's face and +p phi_T n on S are distributed consistently (∫ N_i phi dA =
-// N_i(x_F) I for any affine N_i): C's three face corners get -F n times their face barycentric coordinates
-// at x_F; S's corners get +F n times L_0..L_3 at x_F, and g_T's share is split 1/4 to each of T's corners
-// (femdem.md 1c, step 4). Exactly as Y3D, apart from the clipping order.
+// The load -p phi_T n on C's face and +p phi_T n on S_j are distributed consistently (∫ N_i phi dA =
+// N_i(x_F) I for any affine N_i; femdem.md 1c, step 4): C's corners get -F n times C's barycentric
+// coordinates at x_F (the face's, as x_F lies on the face; the opposite corner's is 0 to round-off); S_j's
+// corners get +F n times L_i(x_F) and g_T's share L_g is split 1/4 to each of T's corners, which adds up to
+// exactly T's barycentric coordinates: corner i gets +F n B_i(x_F).
 //
 // Properties (tests/unit/test_contact_potential.cpp). Every contribution is a force F n and its opposite,
 // both placed at x_F (the distributions reproduce x_F: sum N_i x_i = x_F), so the 8 corner forces sum to zero

@@ -21,9 +21,6 @@ void ensure_size(std::vector<T>& v, size_t n) {
 uint64_t key_of(const BroadPhaseWorkspace::Entry& e) {
   return e.key;
 }
-uint64_t key_of(uint64_t k) {
-  return k;
-}
 
 // Stable LSD radix sort of v[0, n) by key_of, using tmp[0, n) as scratch and count (kMaxDigits x kBuckets)
 // for the histograms; only the digits below the highest set bit are looked at, and digits that are equal
@@ -63,18 +60,45 @@ inline bool overlap(const double* p, const double* q) {
   return p[0] <= q[3] && q[0] <= p[3] && p[1] <= q[4] && q[1] <= p[4] && p[2] <= q[5] && q[2] <= p[5];
 }
 
-// Sort the pair keys, decode them, drop duplicates and excluded pairs into ws.pairs; returns the count of
-// excluded pairs removed.
-size_t finish_pairs(BroadPhaseWorkspace& ws, size_t count, uint64_t m, std::span<const ContactPair> excluded,
-                    size_t& out) {
+// Pair keys rank_a << 32 | rank_b (rank_a < rank_b): counting sort by rank_a (one histogram, one scatter;
+// ranks < n), then each rank_a's run sorted by rank_b (runs are short: the partners of one box). The sorted
+// keys end up in ws.keys_tmp.
+void sort_pair_keys(BroadPhaseWorkspace& ws, size_t count, size_t ranks) {
   ensure_size(ws.keys_tmp, count);
-  radix_sort(ws.keys, ws.keys_tmp, ws.count, count);
+  ensure_size(ws.count, ranks + 1);
+  std::fill_n(ws.count.begin(), ranks + 1, size_t{0});
+  for (size_t i = 0; i < count; ++i) ++ws.count[(ws.keys[i] >> 32) + 1];
+  for (size_t r = 0; r < ranks; ++r) ws.count[r + 1] += ws.count[r];
+  for (size_t i = 0; i < count; ++i) ws.keys_tmp[ws.count[ws.keys[i] >> 32]++] = ws.keys[i];
+  size_t begin = 0;  // after the scatter, count[r] is the end of run r
+  for (size_t r = 0; r < ranks; ++r) {
+    const size_t end = ws.count[r];
+    uint64_t* k = ws.keys_tmp.data();
+    if (end - begin <= 32) {
+      for (size_t i = begin + 1; i < end; ++i) {  // insertion sort
+        const uint64_t v = k[i];
+        size_t j = i;
+        for (; j > begin && k[j - 1] > v; --j) k[j] = k[j - 1];
+        k[j] = v;
+      }
+    } else {
+      std::sort(k + begin, k + end);
+    }
+    begin = end;
+  }
+}
+
+// Decode the sorted keys (ws.keys_tmp), drop duplicates and excluded pairs, into ws.pairs; returns the
+// count of excluded pairs removed.
+size_t finish_pairs(BroadPhaseWorkspace& ws, size_t count, std::span<const ContactPair> excluded,
+                    size_t& out) {
   ensure_size(ws.pairs, count);
   size_t removed = 0, e = 0;
   out = 0;
   for (size_t i = 0; i < count; ++i) {
-    if (i > 0 && ws.keys[i] == ws.keys[i - 1]) continue;
-    const ContactPair p{static_cast<int32_t>(ws.keys[i] / m), static_cast<int32_t>(ws.keys[i] % m)};
+    const uint64_t key = ws.keys_tmp[i];
+    if (i > 0 && key == ws.keys_tmp[i - 1]) continue;
+    const ContactPair p{ws.rank_id[key >> 32], ws.rank_id[key & 0xffffffffu]};
     while (e < excluded.size() && excluded[e] < p) ++e;
     if (e < excluded.size() && excluded[e] == p) {
       ++removed;
@@ -88,9 +112,13 @@ size_t finish_pairs(BroadPhaseWorkspace& ws, size_t count, uint64_t m, std::span
 }  // namespace
 
 BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorkspace& ws) {
-  const size_t cap_before = ws.entries.capacity() + ws.entries_tmp.capacity() + ws.sorted_box.capacity() +
-                            ws.sorted_id.capacity() + ws.keys.capacity() + ws.keys_tmp.capacity() +
-                            ws.count.capacity() + ws.pairs.capacity();
+  auto capacity = [&ws] {
+    return ws.entries.capacity() + ws.entries_tmp.capacity() + ws.id_entries.capacity() +
+           ws.sorted_box.capacity() + ws.sorted_rank.capacity() + ws.rank_of_box.capacity() +
+           ws.rank_id.capacity() + ws.keys.capacity() + ws.keys_tmp.capacity() + ws.count.capacity() +
+           ws.pairs.capacity();
+  };
+  const size_t cap_before = capacity();
   BroadPhaseStats st;
   const size_t n = args.ids.size();
   const double h = 0.5 * args.buffer;
@@ -99,13 +127,11 @@ BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorksp
 
   // Extent of the inflated cloud and the largest inflated edge.
   double gmin[3], gmax[3], edge = 0.0;
-  int32_t max_id = 0;
   for (int k = 0; k < 3; ++k) {
     gmin[k] = args.lo[k] - h;
     gmax[k] = args.hi[k] + h;
   }
   for (size_t i = 0; i < n; ++i) {
-    max_id = std::max(max_id, args.ids[i]);
     for (int k = 0; k < 3; ++k) {
       const double l = args.lo[3 * i + k] - h, u = args.hi[3 * i + k] + h;
       gmin[k] = std::min(gmin[k], l);
@@ -134,9 +160,25 @@ BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorksp
   }
   radix_sort(ws.entries, ws.entries_tmp, ws.count, n);
 
+  // Ranks: ids in increasing order get ranks 0, 1, ... (equal ids share one), so that pairs sorted by rank
+  // are sorted by id, and the pair sort needs only n buckets whatever the ids.
+  ensure_size(ws.id_entries, n);
+  for (size_t i = 0; i < n; ++i)
+    ws.id_entries[i] = {static_cast<uint64_t>(args.ids[i]), static_cast<int32_t>(i)};
+  radix_sort(ws.id_entries, ws.entries_tmp, ws.count, n);
+  ensure_size(ws.rank_of_box, n);
+  ensure_size(ws.rank_id, n);
+  uint32_t rank = 0;
+  for (size_t s = 0; s < n; ++s) {
+    if (s > 0 && ws.id_entries[s].key != ws.id_entries[s - 1].key) ++rank;
+    ws.rank_of_box[static_cast<size_t>(ws.id_entries[s].box)] = rank;
+    ws.rank_id[rank] = static_cast<int32_t>(ws.id_entries[s].key);
+  }
+  const size_t ranks = static_cast<size_t>(rank) + 1;
+
   // Boxes in cell order.
   ensure_size(ws.sorted_box, 6 * n);
-  ensure_size(ws.sorted_id, n);
+  ensure_size(ws.sorted_rank, n);
   for (size_t s = 0; s < n; ++s) {
     const size_t i = static_cast<size_t>(ws.entries[s].box);
     double* b = &ws.sorted_box[6 * s];
@@ -144,18 +186,17 @@ BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorksp
       b[k] = args.lo[3 * i + k] - h;
       b[3 + k] = args.hi[3 * i + k] + h;
     }
-    ws.sorted_id[s] = args.ids[i];
+    ws.sorted_rank[s] = ws.rank_of_box[i];
   }
 
   // Sweep.
-  const uint64_t m = static_cast<uint64_t>(max_id) + 1;
   ws.keys.resize(0);
   auto emit = [&](size_t s, size_t t) {
     ++st.tested;
     if (!overlap(&ws.sorted_box[6 * s], &ws.sorted_box[6 * t])) return;
-    const uint64_t a = static_cast<uint64_t>(ws.sorted_id[s]), b = static_cast<uint64_t>(ws.sorted_id[t]);
+    const uint64_t a = ws.sorted_rank[s], b = ws.sorted_rank[t];
     if (a == b) return;
-    ws.keys.push_back(a < b ? a * m + b : b * m + a);
+    ws.keys.push_back(a < b ? (a << 32) | b : (b << 32) | a);
   };
   const uint64_t nx = dim[0], nxy = dim[0] * dim[1];
   const uint64_t row_lo[5] = {1, nx - 1, nxy - nx - 1, nxy - 1, nxy + nx - 1};
@@ -180,13 +221,11 @@ BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorksp
   }
 
   size_t out = 0;
-  st.excluded = finish_pairs(ws, ws.keys.size(), m, args.excluded, out);
+  sort_pair_keys(ws, ws.keys.size(), ranks);
+  st.excluded = finish_pairs(ws, ws.keys.size(), args.excluded, out);
   ws.pairs.resize(out);
   st.pairs = out;
-  const size_t cap_after = ws.entries.capacity() + ws.entries_tmp.capacity() + ws.sorted_box.capacity() +
-                           ws.sorted_id.capacity() + ws.keys.capacity() + ws.keys_tmp.capacity() +
-                           ws.count.capacity() + ws.pairs.capacity();
-  if (cap_after != cap_before) ++ws.grows;
+  if (capacity() != cap_before) ++ws.grows;
   return st;
 }
 

@@ -19,6 +19,8 @@
 // found by 5 cursors that only move forward ("no binary search", as NBS), and each unordered pair of cells
 // is visited exactly once. With the grid capped at 2^20 cells per axis (c grows if the cloud is wider) a
 // key fits in 63 bits; the cells themselves are never stored, so memory is O(n + pairs) whatever the span.
+// The pairs found are sorted in the ranks of their ids (ids radix-sorted once): a counting sort on the
+// first member (n buckets) and a short sort of each member's partners, O(n + pairs).
 //
 // Output: every pair (a, b) of tet ids with a < b whose boxes overlap, minus the pairs in `excluded`
 // (same form, sorted lexicographically; e.g. tets sharing a node or tied by an intact joint), sorted
@@ -69,12 +71,15 @@ struct BroadPhaseWorkspace {
     uint64_t key;  // cell key
     int32_t box;   // index into the input boxes
   };
-  std::vector<Entry> entries, entries_tmp;
-  std::vector<double> sorted_box;  // 6 per entry in cell order: lo'xyz hi'xyz
-  std::vector<int32_t> sorted_id;
-  std::vector<uint64_t> keys, keys_tmp;  // pair keys a * (max id + 1) + b
-  std::vector<size_t> count;             // radix histograms
-  std::vector<ContactPair> pairs;        // the output of the last call
+  std::vector<Entry> entries, entries_tmp;  // boxes by cell key
+  std::vector<Entry> id_entries;            // boxes by id
+  std::vector<double> sorted_box;           // 6 per entry in cell order: lo'xyz hi'xyz
+  std::vector<uint32_t> sorted_rank;        // id rank per entry in cell order
+  std::vector<uint32_t> rank_of_box;        // id rank per input box
+  std::vector<int32_t> rank_id;             // the id of each rank
+  std::vector<uint64_t> keys, keys_tmp;     // pair keys rank_a << 32 | rank_b
+  std::vector<size_t> count;                // radix histograms, pair-sort offsets
+  std::vector<ContactPair> pairs;           // the output of the last call
   size_t grows = 0;
 };
 

@@ -154,6 +154,16 @@ TEST(ContactBroadPhase, DegenerateBoxes) {
   }
 }
 
+// Ids up to 2e9 (the pair sort works on id ranks, so the largest id costs nothing), and ids listed twice
+// (outside the precondition, but merged like the reference does: each pair once, no self pair).
+TEST(ContactBroadPhase, LargeAndRepeatedIds) {
+  Boxes b = random_boxes(3000, 1.0, 0.05, 9);
+  for (size_t i = 0; i < b.ids.size(); ++i) b.ids[i] = static_cast<int32_t>((b.ids[i] / 3) * 700000 + 5);
+  expect_same_as_brute_force(b, 0.004, "large ids");
+  for (size_t i = 0; i < b.ids.size(); i += 7) b.ids[i] = b.ids[(i * 13 + 1) % b.ids.size()];
+  expect_same_as_brute_force(b, 0.004, "repeated ids");
+}
+
 TEST(ContactBroadPhase, ExclusionsAreRemoved) {
   const Boxes b = random_boxes(3000, 1.0, 0.05, 4);
   const auto all = contact_broad_phase_brute_force(b.args(0.002));

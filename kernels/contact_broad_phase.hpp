@@ -20,13 +20,15 @@
 // is visited exactly once. With the grid capped at 2^20 cells per axis (c grows if the cloud is wider) a
 // key fits in 63 bits; the cells themselves are never stored, so memory is O(n + pairs) whatever the span.
 // The pairs found are sorted in the ranks of their ids (ids radix-sorted once): a counting sort on the
-// first member (n buckets) and a short sort of each member's partners, O(n + pairs).
+// first member (n buckets) and a short sort of each member's partners: O(n + pairs) while the partners
+// per box stay bounded.
 //
 // Output: every pair (a, b) of tet ids with a < b whose boxes overlap, minus the pairs in `excluded`
 // (same form, sorted lexicographically; e.g. tets sharing a node or tied by an intact joint), sorted
 // lexicographically, each once. The result depends only on the set of (id, box) records, not on their order
 // in the input nor on any thread count (the kernel is sequential; see contact_potential.hpp for the
-// parallel narrow phase). Preconditions: ids unique and >= 0; boxes finite with lo <= hi.
+// parallel narrow phase). Preconditions: ids >= 0 (a repeated id is taken as one tet: its pairs are merged
+// and it is never paired with itself); boxes finite with lo <= hi.
 //
 // Cost. O(n + candidate tests + pairs). The cell size follows the largest element, so a cloud with a few
 // large elements among many small ones puts many small ones in one cell (quadratic within the cell):
@@ -34,7 +36,7 @@
 //
 // Re-detection criterion. A pair not reported had a gap g > b between its boxes at detection. If no node
 // has moved by more than d since then, every box still lies inside its detection box grown by d on each
-// side, so the gap is now >= g - 2d > b - 2d: the two elements can only touch (gap <= 0) once 2d >= b.
+// side, so the gap is now >= g - 2d > b - 2d: the two elements can only touch (gap <= 0) once 2d > b.
 // Hence detection must be re-run as soon as  d > b / 2, where d bounds every node's displacement since the
 // last detection: either max_i |x_i - x_i(detection)| (max_node_displacement below; sharp) or Y's running
 // sum of v_max dt over the steps since the detection (an upper bound of the same; femdem.md 1c quotes Y's

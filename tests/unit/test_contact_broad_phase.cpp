@@ -87,7 +87,7 @@ TEST(ContactBroadPhase, ClusteredAndMixedSizes) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   Boxes b;
   int32_t id = 0;
-  // 5 tight clusters of 600 small boxes, 10 large boxes across everything, one far outlier.
+  // 5 tight clusters of 600 small boxes and 10 large boxes across everything.
   for (int c = 0; c < 5; ++c) {
     const double cx = u(rng), cy = u(rng), cz = u(rng);
     for (int i = 0; i < 600; ++i) {
@@ -102,9 +102,14 @@ TEST(ContactBroadPhase, ClusteredAndMixedSizes) {
     const double h[3] = {l[0] + 0.2, l[1] + 0.3, l[2] + 0.1};
     b.add(id++, l, h);
   }
-  const double far_l[3] = {1e5, -1e5, 3e4}, far_h[3] = {1e5 + 0.01, -1e5 + 0.01, 3e4 + 0.01};
-  b.add(id++, far_l, far_h);
   for (double buffer : {0.0, 0.002}) expect_same_as_brute_force(b, buffer, "clustered");
+  // A far outlier: the cloud spans 1e6 m, more than 2^20 cells of the largest box (0.3 m), so the cell
+  // size grows to 1e6 / 2^20.
+  const double far_l[3] = {1e6, -1e6, 3e5}, far_h[3] = {1e6 + 0.01, -1e6 + 0.01, 3e5 + 0.01};
+  b.add(id++, far_l, far_h);
+  BroadPhaseWorkspace ws;
+  EXPECT_GT(contact_broad_phase(b.args(0.0), ws).cell_size, 0.9);
+  for (double buffer : {0.0, 0.002}) expect_same_as_brute_force(b, buffer, "clustered, outlier");
 }
 
 TEST(ContactBroadPhase, DegenerateBoxes) {

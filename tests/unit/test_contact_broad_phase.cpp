@@ -194,6 +194,7 @@ TEST(ContactBroadPhase, GeneratedMeshMatchesBruteForce) {
   const TetMesh mesh = generate_box_mesh(s);
   const size_t T = mesh.tets.size();
   ASSERT_GT(T, 1000u);
+  RecordProperty("tets", static_cast<int>(T));
   std::vector<double> x;
   for (const auto& p : mesh.nodes) x.insert(x.end(), p.begin(), p.end());
   std::vector<int32_t> tet_nodes;

@@ -190,10 +190,10 @@ TEST(ContactBroadPhase, ExclusionsAreRemoved) {
 TEST(ContactBroadPhase, GeneratedMeshMatchesBruteForce) {
   MeshGenerateSpec s;
   s.size = {0.1, 0.06, 0.04};
-  s.size_min = s.size_max = 0.01;
+  s.size_min = s.size_max = 0.006;
   const TetMesh mesh = generate_box_mesh(s);
   const size_t T = mesh.tets.size();
-  ASSERT_GT(T, 1000u);
+  ASSERT_GT(T, 3000u);
   RecordProperty("tets", static_cast<int>(T));
   std::vector<double> x;
   for (const auto& p : mesh.nodes) x.insert(x.end(), p.begin(), p.end());

@@ -369,6 +369,10 @@ ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) 
       for (int d = 0; d < 3; ++d) out[3 * c + d] = r.f[c][d];
     if (!args.normal_force.empty()) args.normal_force[q] = fn;
     if (!args.energy.empty()) args.energy[q] = r.energy;
+    if (!args.friction_energy.empty()) {
+      const double* h = friction ? &args.history[3 * q] : nullptr;
+      args.friction_energy[q] = h ? dot(h, h) / (2.0 * law.tangential_stiffness) : 0.0;
+    }
     if (!args.friction_dissipation.empty()) args.friction_dissipation[q] = fric_diss;
     if (!args.damping_dissipation.empty()) args.damping_dissipation[q] = damp_diss;
   }

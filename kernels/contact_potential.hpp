@@ -122,6 +122,7 @@ struct ContactArgs {
   std::span<double> friction_dissipation = {};  // this step's frictional dissipation [J]
   std::span<double> damping_dissipation = {};   // this step's normal-damping dissipation [J]
   std::span<double> energy = {};                // overlap energy E of the potential [J]
+  std::span<double> friction_energy = {};       // elastic energy in the friction spring |h|^2 / (2 k_t) [J]
 };
 
 struct ContactStatus {

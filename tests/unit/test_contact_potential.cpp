@@ -425,6 +425,15 @@ TEST(ContactFriction, PairsThroughTheDriver) {
     }
   }
   EXPECT_NEAR(total_diss, cap * (60 * vx * dt - cap / args.law.tangential_stiffness), 1e-9 * total_diss);
+  // The spring holds cap^2 / (2 k_t) while sliding; the pair's overlap energy is reported too.
+  std::vector<double> spring(1), overlap(1);
+  args.friction_energy = spring;
+  args.energy = overlap;
+  contact_forces(args, 0, 1);
+  EXPECT_NEAR(spring[0], cap * cap / (2 * args.law.tangential_stiffness), 1e-9 * spring[0]);
+  EXPECT_GT(overlap[0], 0.0);
+  args.friction_energy = {};
+  args.energy = {};
   // Normal damping: approaching adds repulsion and dissipates; separating never pulls.
   args.law.tangential_stiffness = 0.0;
   args.law.normal_damping = f_n / 0.1;  // eta_n v = f_n at v = 0.1

@@ -3,18 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/vec3_ops.hpp"
+
 namespace rift::kernels {
 
 namespace {
-
-inline void cross(const double a[3], const double b[3], double c[3]) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-inline double dot(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // A tet's barycentric coordinates as affine functions B_j(x) = grad[j] . x + c[j], its outward faces and
 // its box.

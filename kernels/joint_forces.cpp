@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "kernels/joint_break.hpp"
+#include "kernels/vec3_ops.hpp"
 
 namespace rift::kernels {
 
@@ -18,15 +19,6 @@ struct JointGeometry {
   double h;        // shortest mid-surface edge
   bool ok;         // area > 0 and finite
 };
-
-inline void cross(const double a[3], const double b[3], double c[3]) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-inline double dot(const double a[3], const double b[3]) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // offset: the joint's initial offset (3 doubles) or nullptr.
 [[gnu::always_inline]] inline JointGeometry geometry(std::span<const double> x, const int32_t* nodes,

@@ -9,6 +9,7 @@
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
+#include "tests/unit/test_run_support.hpp"
 
 using namespace rift;
 namespace fs = std::filesystem;
@@ -27,32 +28,22 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-RunResult run(const Scene& scene, const fs::path& dir, int threads, std::optional<int64_t> stop = {},
-              bool restart = false) {
-  RunOptions o;
-  o.out_dir = dir;
-  o.threads = threads;
-  o.progress = false;
-  o.stop_after_step = stop;
-  o.restart_latest = restart;
-  Simulation sim(scene, o);
-  return sim.run();
-}
+using test::run_scene;
 
 }  // namespace
 
 TEST(Run, RestartIsBitwiseIdenticalToAStraightRun) {
   const Scene scene = small_scene();
   const fs::path a = fresh_dir("straight"), b = fresh_dir("restarted");
-  const RunResult straight = run(scene, a, 1);
+  const RunResult straight = run_scene(scene, a, 1);
   ASSERT_TRUE(straight.completed);
   ASSERT_GT(straight.steps, 10);
   const int64_t half = straight.steps / 2;
-  const RunResult first = run(scene, b, 1, half);
+  const RunResult first = run_scene(scene, b, 1, half);
   EXPECT_FALSE(first.completed);
   EXPECT_EQ(first.steps, half);
   EXPECT_TRUE(fs::exists(b / "checkpoints"));
-  const RunResult second = run(scene, b, 1, std::nullopt, true);
+  const RunResult second = run_scene(scene, b, 1, std::nullopt, true);
   EXPECT_TRUE(second.completed);
   EXPECT_EQ(second.steps, straight.steps);
   EXPECT_EQ(hex64(second.state_hash), hex64(straight.state_hash));
@@ -70,10 +61,10 @@ TEST(Run, RestartAfterAFractureIsBitwiseIdentical) {
   const Scene scene =
       load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/single_joint_mode_I.yaml", {});
   const fs::path a = fresh_dir("frac_straight"), b = fresh_dir("frac_restarted");
-  const RunResult straight = run(scene, a, 1);
+  const RunResult straight = run_scene(scene, a, 1);
   ASSERT_TRUE(straight.completed);
-  run(scene, b, 2, straight.steps - 2000);
-  const RunResult second = run(scene, b, 1, std::nullopt, true);
+  run_scene(scene, b, 2, straight.steps - 2000);
+  const RunResult second = run_scene(scene, b, 1, std::nullopt, true);
   EXPECT_EQ(hex64(second.state_hash), hex64(straight.state_hash));
   std::ifstream fa(a / "fractures.csv"), fb(b / "fractures.csv");
   std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
@@ -110,7 +101,7 @@ TEST(Run, NodeSetInABoxHoldsTheSameNodesAsTheSurface) {
   clamp.box_min = std::array<double, 3>{-1e-9, -1, -1};
   clamp.box_max = std::array<double, 3>{1e-9, 1, 1};
   const fs::path a = fresh_dir("surface_clamp"), b = fresh_dir("box_clamp");
-  EXPECT_EQ(hex64(run(by_surface, a, 1).state_hash), hex64(run(by_box, b, 1).state_hash));
+  EXPECT_EQ(hex64(run_scene(by_surface, a, 1).state_hash), hex64(run_scene(by_box, b, 1).state_hash));
   fs::remove_all(a);
   fs::remove_all(b);
 }
@@ -130,7 +121,7 @@ TEST(Run, SameStateOnOneTwoAndFourThreads) {
   std::string reference;
   for (int threads : {1, 2, 4}) {
     const fs::path dir = fresh_dir("threads" + std::to_string(threads));
-    const RunResult r = run(scene, dir, threads);
+    const RunResult r = run_scene(scene, dir, threads);
     if (threads == 1) reference = hex64(r.state_hash);
     EXPECT_EQ(hex64(r.state_hash), reference) << threads << " threads";
     fs::remove_all(dir);

@@ -12,6 +12,7 @@
 #include "engine/simulation.hpp"
 #include "systems/mesh_conversion_model.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
+#include "tests/unit/test_run_support.hpp"
 
 namespace rift {
 namespace {
@@ -24,16 +25,7 @@ Scene single_joint(std::vector<std::string> overrides) {
   return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/single_joint_mode_I.yaml", overrides);
 }
 
-RunResult run(const Scene& scene, const fs::path& dir, int threads, std::optional<int64_t> stop = {},
-              bool restart = false) {
-  RunOptions o;
-  o.out_dir = dir;
-  o.threads = threads;
-  o.progress = false;
-  o.stop_after_step = stop;
-  o.restart_latest = restart;
-  return Simulation(scene, o).run();
-}
+using test::run_scene;
 
 nlohmann::json summary_of(const fs::path& dir) {
   std::ifstream in(dir / "summary.json");
@@ -97,7 +89,7 @@ TEST(SurfaceOutput, NotchFacesOfTheGeneratedBlockAreTagged) {
 
 TEST(SurfaceOutput, FractureTrianglesAreWrittenWithTheirTime) {
   test::TempDir dir;
-  const RunResult r = run(single_joint({"output.surface=true"}), dir.path(), 1);
+  const RunResult r = run_scene(single_joint({"output.surface=true"}), dir.path(), 1);
   ASSERT_TRUE(r.completed);
   const std::string xdmf = test::slurp(dir / "rift.xdmf");
   EXPECT_NE(xdmf.find("Name=\"surface\""), std::string::npos);
@@ -125,11 +117,11 @@ TEST(SurfaceOutput, FractureTrianglesAreWrittenWithTheirTime) {
 TEST(SurfaceOutput, RestartWritesTheSameSurface) {
   test::TempDir straight_dir, restarted_dir;
   const Scene scene = single_joint({"output.surface=true"});
-  const RunResult straight = run(scene, straight_dir.path(), 2);
+  const RunResult straight = run_scene(scene, straight_dir.path(), 2);
   ASSERT_TRUE(straight.completed);
   const int64_t stop = straight.steps * 19 / 20;  // after the break
-  run(scene, restarted_dir.path(), 2, stop);
-  const RunResult resumed = run(scene, restarted_dir.path(), 1, std::nullopt, true);
+  run_scene(scene, restarted_dir.path(), 2, stop);
+  const RunResult resumed = run_scene(scene, restarted_dir.path(), 1, std::nullopt, true);
   ASSERT_TRUE(resumed.completed);
   EXPECT_EQ(summary_of(straight_dir.path())["metrics"]["mesh_conversion"],
             summary_of(restarted_dir.path())["metrics"]["mesh_conversion"]);

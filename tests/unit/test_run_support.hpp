@@ -1,0 +1,23 @@
+#pragma once
+// One run of a scene into a folder, as `rift run` does it (no progress line): for the tests of runs,
+// restarts and outputs.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "engine/simulation.hpp"
+
+namespace rift::test {
+
+inline RunResult run_scene(const Scene& scene, const std::filesystem::path& dir, int threads,
+                           std::optional<int64_t> stop = {}, bool restart = false) {
+  RunOptions o;
+  o.out_dir = dir;
+  o.threads = threads;
+  o.progress = false;
+  o.stop_after_step = stop;
+  o.restart_latest = restart;
+  return Simulation(scene, o).run();
+}
+
+}  // namespace rift::test

@@ -4,7 +4,8 @@ set -euo pipefail
 packages=(cmake ninja-build g++ ccache pkg-config
           libeigen3-dev libtbb-dev libhdf5-dev libmetis-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
           libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
-          libgtest-dev libgmock-dev libbenchmark-dev hdf5-tools)
+          libgtest-dev libgmock-dev libbenchmark-dev hdf5-tools
+          libhypre-dev libopenmpi-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -98,7 +98,11 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
       phi_fixed_[n] = 1;
       any_pressure = true;
     }
-  if (!any_pressure) phi_fixed_[0] = 1;  // closed domain: pressure defined up to a constant; pin node 0
+  // Closed domain: p is defined up to a constant. The Schur solve works on the singular consistent system
+  // (right-hand side made zero-sum, p normalised to zero mean); the AMG preconditioner and the projection
+  // scheme pin node 0 instead.
+  closed_ = !any_pressure;
+  if (closed_) phi_fixed_[0] = 1;
 
   u_.assign(3 * nn, 0.0);
   for (auto* v : {&u_old_, &u_star_, &u_iter_, &xi_, &w_, &body_force_, &vel_value_, &rhs_})
@@ -260,7 +264,7 @@ void FluidSolver::schur_apply(std::span<const double> v, std::span<double> sv, S
     for (int d = 0; d < 3; ++d) xi_v_[3 * n + d] = -grad_v_[3 * n + d] / node_volume_[n];
   std::fill(sv.begin(), sv.end(), 0.0);
   kernels::fluid_pressure_rhs(tet_nodes_, volume_, grad_, u_v_, v, xi_v_, tau_p_, sv);
-  for (size_t n = 0; n < nn; ++n) sv[n] = phi_fixed_[n] ? v[n] : -sv[n];
+  for (size_t n = 0; n < nn; ++n) sv[n] = phi_fixed_[n] && !closed_ ? v[n] : -sv[n];
 }
 
 // Cahouet-Chabard-type preconditioner: z = [(c + tau_p) K]^-1 r + chi r / diag(M_L/mu + tau_p K).
@@ -272,8 +276,13 @@ void FluidSolver::schur_precondition(std::span<const double> r, std::span<double
   }
   const AmgPcgResult pr = amg_->solve(prec_rhs_, z);
   st.pressure_iterations += pr.iterations;
-  for (size_t n = 0; n < nn; ++n)
-    z[n] = phi_fixed_[n] ? r[n] : z[n] + settings_.viscous_correction * r[n] / visc_diag_[n];
+  double mean = 0.0;
+  for (size_t n = 0; n < nn; ++n) {
+    z[n] = phi_fixed_[n] && !closed_ ? r[n] : z[n] + settings_.viscous_correction * r[n] / visc_diag_[n];
+    mean += z[n];
+  }
+  if (closed_)
+    for (size_t n = 0; n < nn; ++n) z[n] -= mean / static_cast<double>(nn);
 }
 
 // Right-preconditioned flexible GMRES(m) (Saad 1993) on S delta = b, delta = 0 on entry.
@@ -287,7 +296,10 @@ FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std:
     return s;
   };
   double beta = std::sqrt(dot(b.data(), b.data()));
-  const double target = std::max(settings_.schur_rel_tol * beta, 1e-300);
+  // Relative to the largest initial residual of this step, so a Picard iterate that is already converged
+  // costs no iterations.
+  schur_reference_ = std::max(schur_reference_, beta);
+  const double target = std::max(settings_.schur_rel_tol * schur_reference_, 1e-300);
   st.residual = beta;
   if (beta <= target) return st;
   std::copy(b.begin(), b.end(), krylov_v_.begin());  // r = b - S*0
@@ -361,6 +373,7 @@ FluidStepReport FluidSolver::step() {
   const size_t nn = node_count(), nt = volume_.size();
   const double t_new = time_ + s.dt;
   FluidStepReport rep;
+  schur_reference_ = 0.0;
   u_old_ = u_;
   apply_velocity_bc(t_new);
   if (body_force_fn_) {
@@ -428,7 +441,13 @@ FluidStepReport FluidSolver::step() {
     std::fill(cont_res_.begin(), cont_res_.end(), 0.0);
     kernels::fluid_pressure_rhs(tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_, cont_res_);
     if (s.coupling == PressureCoupling::schur_gmres) {
-      for (size_t n = 0; n < nn; ++n) prhs_[n] = phi_fixed_[n] ? 0.0 : cont_res_[n];
+      double sum = 0.0;
+      for (size_t n = 0; n < nn; ++n) {
+        prhs_[n] = phi_fixed_[n] && !closed_ ? 0.0 : cont_res_[n];
+        sum += prhs_[n];
+      }
+      if (closed_)
+        for (double& r : prhs_) r -= sum / static_cast<double>(nn);
       std::fill(phi_.begin(), phi_.end(), 0.0);
       const SchurStats st = schur_solve(prhs_, phi_);
       rep.velocity_iterations += st.velocity_iterations;
@@ -438,6 +457,14 @@ FluidStepReport FluidSolver::step() {
       schur_velocity(phi_, corr_, rep.velocity_iterations);
       for (size_t i = 0; i < 3 * nn; ++i) u_[i] = u_star_[i] + corr_[i];
       for (size_t n = 0; n < nn; ++n) p_[n] = pressure_fixed_by_[n] >= 0 ? phi_value_[n] : p_[n] + phi_[n];
+      if (closed_) {
+        double pv = 0.0, vol = 0.0;
+        for (size_t n = 0; n < nn; ++n) {
+          pv += node_volume_[n] * p_[n];
+          vol += node_volume_[n];
+        }
+        for (double& pn : p_) pn -= pv / vol;
+      }
     } else {
       prhs_ = cont_res_;
       std::fill(phi_.begin(), phi_.end(), 0.0);

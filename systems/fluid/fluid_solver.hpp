@@ -160,6 +160,8 @@ class FluidSolver {
   BicgstabJacobi bicgstab_;
   std::unique_ptr<HypreAmgPcg> amg_;
   bool pressure_matrix_stale_ = true;
+  bool closed_ = false;  // no pressure boundary
+  double schur_reference_ = 0.0;
   VectorField body_force_fn_;
 };
 

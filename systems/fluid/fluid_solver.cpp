@@ -495,7 +495,7 @@ FluidStepReport FluidSolver::step() {
         if (pressure_fixed_by_[n] >= 0)
           p_[n] = phi_value_[n];
         else
-          p_[n] += phi_[n] + s.viscous_correction * cont_res_[n] / visc_diag_[n];
+          p_[n] += phi_[n] + s.projection_viscous_correction * cont_res_[n] / visc_diag_[n];
       }
     }
     project_gradient();

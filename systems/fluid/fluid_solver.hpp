@@ -62,7 +62,8 @@ struct FluidSettings {
   bool convection = true;
   bool supg = true;                   // streamline diffusion on the convection
   double pressure_stabilisation = 1;  // factor on tau_p (0 = none: unstable for P1-P1 at steady state)
-  double viscous_correction = 1.0;    // chi above
+  double viscous_correction = 1.0;    // chi above, in the Schur preconditioner
+  double projection_viscous_correction = 0.0;  // chi as a Richardson step (projection): > 0.5 diverged
   int picard_max_iterations = 20;
   double picard_tol = 1e-6;  // on max|du|/max|u| and max|dp|/max(max|p|, rho max|u|^2)
   double velocity_rel_tol = 1e-10;

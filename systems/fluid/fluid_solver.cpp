@@ -115,7 +115,6 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
 
   momentum_ = p1_pattern(static_cast<int32_t>(nn), tet_nodes_);
-  component_ = momentum_;
   pressure_mat_ = momentum_;
   slot_ = p1_tet_slots(momentum_, tet_nodes_);
   diag_slot_ = diagonal_slots(momentum_);

@@ -1,18 +1,19 @@
 #pragma once
 // Incompressible Navier-Stokes on a tet mesh: P1-P1 (equal order) with pressure-gradient-projection
-// stabilisation, theta scheme in time, and an iterated incremental pressure correction whose outer loop
-// is also the Picard linearisation (docs/fluid.md has the equations and the reasons). Per step n -> n+1,
-// starting from u^0 = u^n, p^0 = p^n and for k = 0, 1, ... until the changes in u and p fall below
-// picard_tol:
+// stabilisation, theta scheme in time, Picard linearisation (docs/fluid.md has the equations and the
+// reasons). Per step n -> n+1, from u^0 = u^n, p^0 = p^n, for k = 0, 1, ... until the changes in u and p
+// fall below picard_tol:
 //   1. momentum (three scalar systems, one matrix, Jacobi-BiCGSTAB), advecting w = theta u^k + (1-theta) u^n:
 //        rho (u* - u^n)/dt + theta L(w) u* + (1-theta) L(w) u^n + sigma (u* - u_s) + grad p^k = f + s
-//   2. pressure increment (BoomerAMG-PCG):  -div((c + tau_p) grad phi) = -R(u*, p^k),
-//        R = div u* - div(tau_p (grad p - xi)) the stabilised continuity residual, xi = projection of
-//        grad p^k, c = 1/(rho/dt + sigma) (the absorption sigma is in the correction operator, fluid.md 1.3)
-//   3. u^{k+1} = u* - c grad phi (lumped),  p^{k+1} = p^k + phi - chi mu M_L^-1 R  (chi: the viscous part of
-//      the Cahouet-Chabard Schur-complement preconditioner; chi = 0 gives the plain incremental scheme).
-// At convergence phi = 0 and R = 0: the step has solved the monolithic stabilised theta scheme, with no
-// splitting error. Boundary conditions live on the mesh's named surfaces.
+//   2. continuity residual R(u*, p^k) = div u* - div(tau_p (grad p - xi(p))), xi(p) = lumped projection
+//      of grad p (linear in p, so implicit);
+//   3. schur_gmres (default): S delta = -R by FGMRES, S v = R(A^-1(-G v), v) the pressure Schur complement,
+//      preconditioned by [(c + tau_p) K]^-1 (BoomerAMG-PCG) + chi diag(M_L/mu + tau_p K)^-1, c = 1/(rho/dt
+//      + sigma) (sigma in the pressure operator, fluid.md 1.3); u = u* + A^-1(-G delta), p = p^k + delta:
+//      each Picard iteration solves the linearised monolithic stabilised theta step (no splitting error).
+//      projection: one correction -div((c + tau_p) grad phi) = -R, u = u* - c grad phi (lumped),
+//      p += phi; its fixed point is the same, reached more slowly when mu dt / (rho h^2) >> 1.
+// Boundary conditions live on the mesh's named surfaces.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -153,7 +154,7 @@ class FluidSolver {
   std::vector<double> sigma_, target_, source_;
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
   // Linear algebra.
-  CsrMatrix momentum_, component_, pressure_mat_;
+  CsrMatrix momentum_, pressure_mat_;
   std::array<CsrMatrix, 3> comp_;  // momentum with the Dirichlet rows of each component
   std::vector<double> krylov_v_, krylov_z_, hess_, g_, cs_, sn_, y_, u_v_, xi_v_, grad_v_, prec_rhs_;
   std::vector<int32_t> slot_, diag_slot_;

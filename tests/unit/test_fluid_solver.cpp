@@ -121,7 +121,9 @@ TEST(FluidSolver, HydrostaticBoxStaysAtRestWithAJumpInSigma) {
   for (int i = 0; i < 3; ++i) rep = s.step();
   double umax = 0.0;
   for (double v : s.velocity()) umax = std::max(umax, std::abs(v));
-  EXPECT_LT(umax, 1e-9);
+  // One step of unbalanced gravity would give g dt ~ 0.1 m/s; what is left is solver tolerance (2.7e-9
+  // in the -O1 sanitizer build, 1e-10 at -O2).
+  EXPECT_LT(umax, 1e-8);
   const auto p = s.pressure();
   for (size_t n = 0; n < s.node_count(); ++n) EXPECT_NEAR(p[n], -1000.0 * g * (x[3 * n + 2] - 0.5), 1e-6);
   EXPECT_EQ(rep.cfl, rep.cfl);

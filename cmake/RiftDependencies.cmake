@@ -28,6 +28,18 @@ add_library(rift::metis INTERFACE IMPORTED)
 set_target_properties(rift::metis PROPERTIES INTERFACE_INCLUDE_DIRECTORIES ${METIS_INCLUDE_DIR}
                                              INTERFACE_LINK_LIBRARIES ${METIS_LIBRARY})
 
+# hypre (BoomerAMG for the fluid pressure). Debian's libhypre-2.26 is built against OpenMPI, so a serial Rift
+# still links MPI and calls MPI_Init (singleton mode: no mpirun needed; engine/linear/hypre_runtime.cpp).
+rift_require(MPI libopenmpi-dev COMPONENTS CXX)
+find_path(HYPRE_INCLUDE_DIR HYPRE.h PATH_SUFFIXES hypre)
+find_library(HYPRE_LIBRARY HYPRE)
+if(NOT HYPRE_INCLUDE_DIR OR NOT HYPRE_LIBRARY)
+  message(FATAL_ERROR "Rift needs hypre. On Debian 12: apt-get install libhypre-dev")
+endif()
+add_library(rift::hypre INTERFACE IMPORTED)
+set_target_properties(rift::hypre PROPERTIES INTERFACE_INCLUDE_DIRECTORIES ${HYPRE_INCLUDE_DIR}
+                                             INTERFACE_LINK_LIBRARIES "${HYPRE_LIBRARY};MPI::MPI_CXX")
+
 if(RIFT_BUILD_TESTS)
   rift_require(GTest libgtest-dev)
 endif()

@@ -5,6 +5,7 @@ packages=(cmake ninja-build g++ ccache pkg-config
           libeigen3-dev libtbb-dev libhdf5-dev libmetis-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
           libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev hdf5-tools
+          libhypre-dev libopenmpi-dev
           python3-matplotlib)  # python3-matplotlib: the plot of rift sweep
 missing=()
 for p in "${packages[@]}"; do

@@ -2,7 +2,9 @@
 
 #include <CGAL/version.h>
 #include <H5public.h>
+#include <HYPRE_config.h>
 #include <metis.h>
+#include <mpi.h>
 #include <oneapi/tbb/version.h>
 #include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
@@ -163,6 +165,13 @@ int info() {
   std::printf("  spdlog      %d.%d.%d\n", SPDLOG_VER_MAJOR, SPDLOG_VER_MINOR, SPDLOG_VER_PATCH);
   std::printf("  fmt         %d.%d.%d\n", FMT_VERSION / 10000, FMT_VERSION / 100 % 100, FMT_VERSION % 100);
   std::printf("  CLI11       %s\n", CLI11_VERSION);
+  std::printf("  hypre       %s\n", HYPRE_RELEASE_VERSION);
+#if defined(OMPI_MAJOR_VERSION)
+  std::printf("  MPI         Open MPI %d.%d.%d (MPI %d.%d; serial runs use singleton mode)\n",
+              OMPI_MAJOR_VERSION, OMPI_MINOR_VERSION, OMPI_RELEASE_VERSION, MPI_VERSION, MPI_SUBVERSION);
+#else
+  std::printf("  MPI         %d.%d\n", MPI_VERSION, MPI_SUBVERSION);
+#endif
   return 0;
 }
 

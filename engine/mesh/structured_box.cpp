@@ -1,0 +1,27 @@
+#include "engine/mesh/structured_box.hpp"
+
+#include <stdexcept>
+
+#include "engine/mesh/lattice_box.hpp"
+
+namespace rift {
+
+// The Kuhn lattice of lattice_box.hpp, moved to [lo, hi].
+TetMesh structured_box(const StructuredBoxSpec& spec) {
+  for (int d = 0; d < 3; ++d) {
+    if (spec.cells[d] < 1) throw std::invalid_argument("structured_box: cells must be >= 1");
+    if (!(spec.hi[d] > spec.lo[d])) throw std::invalid_argument("structured_box: hi must exceed lo");
+  }
+  TetMesh mesh = generate_lattice_box(
+      spec.cells, {spec.hi[0] - spec.lo[0], spec.hi[1] - spec.lo[1], spec.hi[2] - spec.lo[2]});
+  const int n[3] = {spec.cells[0] + 1, spec.cells[1] + 1, spec.cells[2] + 1};
+  for (size_t v = 0; v < mesh.nodes.size(); ++v) {
+    const int index[3] = {int(v % n[0]), int(v / n[0] % n[1]), int(v / (n[0] * n[1]))};
+    for (int d = 0; d < 3; ++d)
+      // The last node of each row is hi exactly, so boundary tests can compare coordinates.
+      mesh.nodes[v][d] = index[d] == spec.cells[d] ? spec.hi[d] : spec.lo[d] + mesh.nodes[v][d];
+  }
+  return mesh;
+}
+
+}  // namespace rift

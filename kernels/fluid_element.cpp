@@ -1,0 +1,245 @@
+#include "kernels/fluid_element.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rift::kernels {
+
+double p1_gradients(const double* x, double* g) {
+  double e[3][3];
+  for (int s = 0; s < 3; ++s)
+    for (int d = 0; d < 3; ++d) e[s][d] = x[3 * (s + 1) + d] - x[d];
+  // Rows of J^-1 (J has the edges e_s as columns) are the gradients of N_1..N_3: cof(J)^T / det.
+  const double c00 = e[1][1] * e[2][2] - e[1][2] * e[2][1];
+  const double c01 = e[1][2] * e[2][0] - e[1][0] * e[2][2];
+  const double c02 = e[1][0] * e[2][1] - e[1][1] * e[2][0];
+  const double det = e[0][0] * c00 + e[0][1] * c01 + e[0][2] * c02;
+  if (!(det > 0.0)) {
+    std::fill(g, g + 12, 0.0);
+    return std::isfinite(det) ? det / 6.0 : 0.0;
+  }
+  const double inv = 1.0 / det;
+  // grad N_1 = (e2 x e3)/det, grad N_2 = (e3 x e1)/det, grad N_3 = (e1 x e2)/det.
+  const auto cross = [](const double* a, const double* b, double* out) {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+  };
+  cross(e[1], e[2], g + 3);
+  cross(e[2], e[0], g + 6);
+  cross(e[0], e[1], g + 9);
+  for (int d = 0; d < 3; ++d) {
+    g[3 + d] *= inv;
+    g[6 + d] *= inv;
+    g[9 + d] *= inv;
+    g[d] = -(g[3 + d] + g[6 + d] + g[9 + d]);
+  }
+  return det / 6.0;
+}
+
+double tet_max_edge(const double* x) {
+  double h2 = 0.0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) {
+      double s = 0.0;
+      for (int d = 0; d < 3; ++d) s += (x[3 * a + d] - x[3 * b + d]) * (x[3 * a + d] - x[3 * b + d]);
+      h2 = std::max(h2, s);
+    }
+  return std::sqrt(h2);
+}
+
+void p1_mass(double volume, double* m) {
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) m[4 * a + b] = volume * (a == b ? 2.0 : 1.0) / 20.0;
+}
+
+void p1_stiffness(double volume, const double* g, double* k) {
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b)
+      k[4 * a + b] =
+          volume * (g[3 * a] * g[3 * b] + g[3 * a + 1] * g[3 * b + 1] + g[3 * a + 2] * g[3 * b + 2]);
+}
+
+void p1_convection(double volume, const double* g, const double* w, double* c) {
+  double sum[3] = {0.0, 0.0, 0.0};
+  for (int n = 0; n < 4; ++n)
+    for (int d = 0; d < 3; ++d) sum[d] += w[3 * n + d];
+  for (int a = 0; a < 4; ++a) {
+    const double wa[3] = {sum[0] + w[3 * a], sum[1] + w[3 * a + 1], sum[2] + w[3 * a + 2]};
+    for (int b = 0; b < 4; ++b)
+      c[4 * a + b] = volume / 20.0 * (wa[0] * g[3 * b] + wa[1] * g[3 * b + 1] + wa[2] * g[3 * b + 2]);
+  }
+}
+
+void p1_streamline_diffusion(double volume, const double* g, const double* wbar, double tau, double* s) {
+  double wg[4];
+  for (int a = 0; a < 4; ++a) wg[a] = wbar[0] * g[3 * a] + wbar[1] * g[3 * a + 1] + wbar[2] * g[3 * a + 2];
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) s[4 * a + b] = tau * volume * wg[a] * wg[b];
+}
+
+size_t p1_prepare(std::span<const double> x, std::span<const int32_t> tet_nodes, std::span<double> volume,
+                  std::span<double> grad, std::span<double> h) {
+  const size_t n_tets = tet_nodes.size() / 4;
+  size_t bad = 0;
+  for (size_t t = 0; t < n_tets; ++t) {
+    double xt[12];
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) xt[3 * a + d] = x[3 * static_cast<size_t>(tet_nodes[4 * t + a]) + d];
+    const double v = p1_gradients(xt, &grad[12 * t]);
+    if (!(v > 0.0)) ++bad;
+    volume[t] = v > 0.0 ? v : 0.0;
+    h[t] = tet_max_edge(xt);
+  }
+  return bad;
+}
+
+void fluid_assemble_momentum(const FluidMomentumArgs& a) {
+  const size_t n_tets = a.tet_nodes.size() / 4;
+  const double rdt = a.rho / a.dt;
+  for (size_t t = 0; t < n_tets; ++t) {
+    const int32_t* nodes = &a.tet_nodes[4 * t];
+    const double v = a.volume[t];
+    if (v <= 0.0) continue;
+    const double* g = &a.grad[12 * t];
+    double w[12], wbar[3] = {0.0, 0.0, 0.0};
+    for (int n = 0; n < 4; ++n)
+      for (int d = 0; d < 3; ++d) {
+        w[3 * n + d] = a.advect[3 * static_cast<size_t>(nodes[n]) + d];
+        wbar[d] += 0.25 * w[3 * n + d];
+      }
+    double m[16], k[16], c[16], s[16];
+    p1_mass(v, m);
+    p1_stiffness(v, g, k);
+    p1_convection(v, g, w, c);
+    const double tau_s = a.supg_tau.empty() ? 0.0 : a.supg_tau[t];
+    if (tau_s > 0.0)
+      p1_streamline_diffusion(v, g, wbar, a.rho * tau_s, s);
+    else
+      std::fill(s, s + 16, 0.0);
+    const double sigma = a.sigma.empty() ? 0.0 : a.sigma[t];
+    // Pressure: constant cell gradient; -int N_a grad p = -(V/4) grad p.
+    double gp[3] = {0.0, 0.0, 0.0};
+    for (int n = 0; n < 4; ++n) {
+      const double pn = a.pressure[nodes[n]];
+      for (int d = 0; d < 3; ++d) gp[d] += g[3 * n + d] * pn;
+    }
+    double cell_force[3] = {0.0, 0.0, 0.0};
+    for (int d = 0; d < 3; ++d) {
+      cell_force[d] = -gp[d];
+      if (!a.source.empty()) cell_force[d] += a.source[3 * t + d];
+      if (sigma != 0.0 && !a.target.empty()) cell_force[d] += sigma * a.target[3 * t + d];
+    }
+    for (int i = 0; i < 4; ++i) {
+      double r[3] = {0.0, 0.0, 0.0};
+      for (int j = 0; j < 4; ++j) {
+        const double l = a.mu * k[4 * i + j] + a.rho * c[4 * i + j] + s[4 * i + j];
+        double kij = rdt * m[4 * i + j] + a.theta * l;
+        if (i == j) kij += sigma * 0.25 * v;
+        a.matrix_values[a.slot[16 * t + 4 * i + j]] += kij;
+        const double rij = rdt * m[4 * i + j] - (1.0 - a.theta) * l;
+        const size_t nj = static_cast<size_t>(nodes[j]);
+        for (int d = 0; d < 3; ++d) {
+          r[d] += rij * a.u_old[3 * nj + d];
+          if (!a.body_force.empty()) r[d] += m[4 * i + j] * a.body_force[3 * nj + d];
+        }
+      }
+      const size_t ni = static_cast<size_t>(nodes[i]);
+      for (int d = 0; d < 3; ++d) a.rhs[3 * ni + d] += r[d] + 0.25 * v * cell_force[d];
+    }
+  }
+}
+
+namespace {
+
+template <bool kMatrix>
+void laplacian_pass(const ScalarLaplacianArgs& a) {
+  const size_t n_tets = a.tet_nodes.size() / 4;
+  const bool with_rhs = !a.rhs.empty();
+  for (size_t t = 0; t < n_tets; ++t) {
+    const int32_t* nodes = &a.tet_nodes[4 * t];
+    const double v = a.volume[t];
+    if (v <= 0.0) continue;
+    double k[16];
+    p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
+    for (int i = 0; i < 4; ++i) {
+      if (a.fixed[nodes[i]]) continue;
+      for (int j = 0; j < 4; ++j) {
+        if (a.fixed[nodes[j]]) {
+          if (with_rhs) a.rhs[nodes[i]] -= k[4 * i + j] * a.value[nodes[j]];
+        } else if constexpr (kMatrix) {
+          a.matrix_values[a.slot[16 * t + 4 * i + j]] += k[4 * i + j];
+        }
+      }
+    }
+  }
+  const size_t n_nodes = a.fixed.size();
+  for (size_t n = 0; n < n_nodes; ++n)
+    if (a.fixed[n]) {
+      if constexpr (kMatrix) a.matrix_values[a.diag_slot[n]] = 1.0;
+      if (with_rhs) a.rhs[n] = a.value[n];
+    }
+}
+
+}  // namespace
+
+void scalar_laplacian_assemble(const ScalarLaplacianArgs& a) {
+  laplacian_pass<true>(a);
+}
+void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
+  laplacian_pass<false>(a);
+}
+
+void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const double> volume,
+                        std::span<const double> grad, std::span<const double> u, std::span<const double> p,
+                        std::span<const double> xi, std::span<const double> tau_p, std::span<double> rhs) {
+  const size_t n_tets = tet_nodes.size() / 4;
+  for (size_t t = 0; t < n_tets; ++t) {
+    const int32_t* nodes = &tet_nodes[4 * t];
+    const double v = volume[t];
+    if (v <= 0.0) continue;
+    const double* g = &grad[12 * t];
+    double div = 0.0, r[3] = {0.0, 0.0, 0.0};
+    for (int n = 0; n < 4; ++n) {
+      const size_t nn = static_cast<size_t>(nodes[n]);
+      for (int d = 0; d < 3; ++d) {
+        div += g[3 * n + d] * u[3 * nn + d];
+        r[d] += g[3 * n + d] * p[nn] - (xi.empty() ? 0.0 : 0.25 * xi[3 * nn + d]);
+      }
+    }
+    const double tau = tau_p.empty() ? 0.0 : tau_p[t];
+    for (int q = 0; q < 4; ++q)
+      rhs[nodes[q]] -=
+          0.25 * v * div + tau * v * (g[3 * q] * r[0] + g[3 * q + 1] * r[1] + g[3 * q + 2] * r[2]);
+  }
+}
+
+void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> grad,
+                   std::span<const double> u, std::span<double> div) {
+  const size_t n_tets = tet_nodes.size() / 4;
+  for (size_t t = 0; t < n_tets; ++t) {
+    double s = 0.0;
+    for (int n = 0; n < 4; ++n) {
+      const size_t nn = static_cast<size_t>(tet_nodes[4 * t + n]);
+      for (int d = 0; d < 3; ++d) s += grad[12 * t + 3 * n + d] * u[3 * nn + d];
+    }
+    div[t] = s;
+  }
+}
+
+void p1_weighted_gradient(std::span<const int32_t> tet_nodes, std::span<const double> volume,
+                          std::span<const double> grad, std::span<const double> p, std::span<const double> w,
+                          std::span<double> out) {
+  const size_t n_tets = tet_nodes.size() / 4;
+  for (size_t t = 0; t < n_tets; ++t) {
+    const int32_t* nodes = &tet_nodes[4 * t];
+    double gp[3] = {0.0, 0.0, 0.0};
+    for (int n = 0; n < 4; ++n)
+      for (int d = 0; d < 3; ++d) gp[d] += grad[12 * t + 3 * n + d] * p[nodes[n]];
+    const double f = 0.25 * volume[t] * (w.empty() ? 1.0 : w[t]);
+    for (int n = 0; n < 4; ++n)
+      for (int d = 0; d < 3; ++d) out[3 * static_cast<size_t>(nodes[n]) + d] += f * gp[d];
+  }
+}
+
+}  // namespace rift::kernels

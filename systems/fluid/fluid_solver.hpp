@@ -1,0 +1,170 @@
+#pragma once
+// Incompressible Navier-Stokes on a tet mesh: P1-P1 (equal order) with pressure-gradient-projection
+// stabilisation, theta scheme in time, Picard linearisation (docs/fluid.md has the equations and the
+// reasons). Per step n -> n+1, from u^0 = u^n, p^0 = p^n, for k = 0, 1, ... until the changes in u and p
+// fall below picard_tol:
+//   1. momentum (three scalar systems, one matrix, Jacobi-BiCGSTAB), advecting w = theta u^k + (1-theta) u^n:
+//        rho (u* - u^n)/dt + theta L(w) u* + (1-theta) L(w) u^n + sigma (u* - u_s) + grad p^k = f + s
+//   2. continuity residual R(u*, p^k) = div u* - div(tau_p (grad p - xi(p))), xi(p) = lumped projection
+//      of grad p (linear in p, so implicit);
+//   3. schur_gmres (default): S delta = -R by FGMRES, S v = R(A^-1(-G v), v) the pressure Schur complement,
+//      preconditioned by [(c + tau_p) K]^-1 (BoomerAMG-PCG) + chi diag(M_L/mu + tau_p K)^-1, c = 1/(rho/dt
+//      + sigma) (sigma in the pressure operator, fluid.md 1.3); u = u* + A^-1(-G delta), p = p^k + delta:
+//      each Picard iteration solves the linearised monolithic stabilised theta step (no splitting error).
+//      projection: one correction -div((c + tau_p) grad phi) = -R, u = u* - c grad phi (lumped),
+//      p += phi; its fixed point is the same, reached more slowly when mu dt / (rho h^2) >> 1.
+// Boundary conditions live on the mesh's named surfaces.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/linear/csr_matrix.hpp"
+#include "engine/linear/hypre_pcg.hpp"
+#include "engine/linear/krylov.hpp"
+#include "engine/mesh/tet_mesh.hpp"
+
+namespace rift::fluid {
+
+using Vec3 = std::array<double, 3>;
+using VectorField = std::function<Vec3(const Vec3& x, double t)>;
+using ScalarField = std::function<double(const Vec3& x, double t)>;
+
+enum class BoundaryKind {
+  no_slip,    // u = 0
+  velocity,   // u = velocity(x, t)
+  free_slip,  // u . n = 0, zero tangential traction; the surface must be an axis-aligned plane
+  pressure,   // p = pressure(x, t), mu du/dn = 0 (do-nothing)
+  outflow,    // p = 0, mu du/dn = 0
+};
+
+struct FluidBoundary {
+  std::string surface;
+  BoundaryKind kind = BoundaryKind::no_slip;
+  VectorField velocity;  // kind == velocity
+  ScalarField pressure;  // kind == pressure
+};
+
+enum class PressureCoupling {
+  schur_gmres,  // each Picard iteration solves the linearised stabilised system exactly (FGMRES on the
+                // pressure Schur complement, preconditioned as below): robust for any viscosity and dt
+  projection,   // one pressure correction per Picard iteration (iterated incremental projection): cheap,
+                // converges slowly when mu dt / (rho h^2) >> 1
+};
+
+struct FluidSettings {
+  double rho = 1.0;    // density [kg/m^3]
+  double mu = 1.0;     // dynamic viscosity [Pa s]
+  double dt = 1e-2;    // time step [s]
+  double theta = 1.0;  // 1 backward Euler, 0.5 Crank-Nicolson
+  bool convection = true;
+  bool supg = true;                   // streamline diffusion on the convection
+  double pressure_stabilisation = 1;  // factor on tau_p (0 = none: unstable for P1-P1 at steady state)
+  double viscous_correction = 1.0;    // chi above, in the Schur preconditioner
+  double projection_viscous_correction = 0.0;  // chi as a Richardson step (projection): > 0.5 diverged
+  int picard_max_iterations = 20;
+  double picard_tol = 1e-6;  // on max|du|/max|u| and max|dp|/max(max|p|, rho max|u|^2)
+  double velocity_rel_tol = 1e-10;
+  int velocity_max_iterations = 2000;
+  PressureCoupling coupling = PressureCoupling::schur_gmres;
+  double schur_rel_tol = 1e-8;  // FGMRES on the Schur complement, relative to its initial residual
+  int schur_restart = 50;
+  int schur_max_iterations = 200;
+  AmgPcgSettings pressure_solver{};
+  bool verbose = false;  // one line per Picard iteration on stderr
+};
+
+struct FluidStepReport {
+  int picard_iterations = 0;
+  double velocity_change = 0.0, pressure_change = 0.0;  // relative, last Picard iteration
+  bool converged = false;
+  int velocity_iterations = 0;  // BiCGSTAB, summed over components and Picard iterations
+  int pressure_iterations = 0;  // PCG, summed over Picard iterations
+  int amg_setups = 0;
+  int schur_iterations = 0;     // FGMRES, summed over Picard iterations (schur_gmres)
+  double divergence_l2 = 0.0;   // sqrt(sum_t V_t (div u_t)^2) of u^{n+1}
+  double divergence_max = 0.0;  // max_t |div u_t|
+  double cfl = 0.0;             // max_t |u_t| dt / h_t, h_t = longest edge
+};
+
+class FluidSolver {
+ public:
+  FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vector<FluidBoundary> boundaries);
+  ~FluidSolver();
+
+  // Coupling hooks, one value per tet, zero by default: absorption sigma [kg/(m^3 s)] (implicit, relaxes
+  // u towards target), target velocity u_s (3 per tet), momentum source s [N/m^3] (3 per tet).
+  // Call absorption_changed() after writing sigma (the pressure operator depends on it).
+  std::span<double> sigma() { return sigma_; }
+  std::span<double> target_velocity() { return target_; }
+  std::span<double> source() { return source_; }
+  void absorption_changed() { pressure_matrix_stale_ = true; }
+  // Body force per unit volume f(x, t) [N/m^3], evaluated at the nodes (theta-weighted in time).
+  void set_body_force(VectorField f) { body_force_fn_ = std::move(f); }
+
+  void set_velocity(const VectorField& u0);  // at the current time; also sets u on Dirichlet nodes
+  void set_time(double t) { time_ = t; }
+
+  FluidStepReport step();
+
+  double time() const { return time_; }
+  std::span<const double> velocity() const { return u_; }  // 3 per node
+  std::span<const double> pressure() const { return p_; }  // 1 per node
+  std::span<const double> nodes() const { return x_; }     // 3 per node
+  std::span<const int32_t> tets() const { return tet_nodes_; }
+  std::span<const double> volumes() const { return volume_; }
+  const FluidSettings& settings() const { return settings_; }
+  size_t node_count() const { return x_.size() / 3; }
+
+ private:
+  struct SchurStats {
+    int iterations = 0, velocity_iterations = 0, pressure_iterations = 0;
+    double residual = 0.0;
+    bool converged = false;
+  };
+  void build_component_matrices();
+  int solve_momentum(std::span<const double> rhs3, std::span<double> u3, bool homogeneous);
+  void schur_velocity(std::span<const double> v, std::span<double> u_v, int& velocity_iterations);
+  void schur_apply(std::span<const double> v, std::span<double> sv, SchurStats& st);
+  void schur_precondition(std::span<const double> r, std::span<double> z, SchurStats& st);
+  SchurStats schur_solve(std::span<const double> b, std::span<double> delta);
+  void apply_velocity_bc(double t);
+  void assemble_pressure_matrix();
+  void update_cell_coefficients();
+
+  FluidSettings settings_;
+  std::vector<FluidBoundary> boundaries_;
+  double time_ = 0.0;
+  std::vector<double> x_, volume_, grad_, h_;
+  std::vector<int32_t> tet_nodes_;
+  std::vector<double> node_volume_;  // lumped mass sum_t V/4
+  std::vector<double> visc_diag_;    // diagonal of M_L / mu + sum tau_p K
+  // Boundary conditions: per node and component, the boundary fixing it (-1 free; free slip fixes the
+  // normal component to 0, recorded as -2).
+  std::vector<int32_t> vel_fixed_by_;
+  std::vector<double> vel_value_;  // 3 per node at the time of the last apply_velocity_bc
+  std::vector<int32_t> pressure_fixed_by_;
+  std::vector<uint8_t> phi_fixed_;
+  std::vector<double> phi_value_;
+  // Fields.
+  std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
+  std::vector<double> sigma_, target_, source_;
+  std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
+  // Linear algebra.
+  CsrMatrix momentum_, pressure_mat_;
+  std::array<CsrMatrix, 3> comp_;  // momentum with the Dirichlet rows of each component
+  std::vector<double> krylov_v_, krylov_z_, hess_, g_, cs_, sn_, y_, u_v_, xi_v_, grad_v_, prec_rhs_;
+  std::vector<int32_t> slot_, diag_slot_;
+  std::vector<double> rhs_, rhs_c_, x_c_, prhs_, cont_res_, phi_, corr_;
+  BicgstabJacobi bicgstab_;
+  std::unique_ptr<HypreAmgPcg> amg_;
+  bool pressure_matrix_stale_ = true;
+  bool closed_ = false;  // no pressure boundary
+  double schur_reference_ = 0.0;
+  VectorField body_force_fn_;
+};
+
+}  // namespace rift::fluid

@@ -1,0 +1,117 @@
+#pragma once
+// Shared by the fluid validation tests: structured or jittered box meshes, time-marching to steady
+// state, and L2 errors by quadrature.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "engine/mesh/structured_box.hpp"
+#include "kernels/fluid_element.hpp"
+#include "systems/fluid/fluid_solver.hpp"
+
+namespace rift::fluid_test {
+
+using fluid::Vec3;
+
+// Structured box whose interior nodes are moved by up to jitter * (cell size) in each direction (a
+// deterministic pseudo-random perturbation), so the tets are irregular and P1 is no longer nodally exact.
+inline TetMesh jittered_box(const StructuredBoxSpec& spec, double jitter, unsigned seed = 7) {
+  TetMesh m = structured_box(spec);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto& p : m.nodes) {
+    bool interior = true;
+    for (int d = 0; d < 3; ++d) interior = interior && p[d] > spec.lo[d] && p[d] < spec.hi[d];
+    for (int d = 0; d < 3; ++d) {
+      const double r = u(rng);
+      if (interior) p[d] += jitter * r * (spec.hi[d] - spec.lo[d]) / spec.cells[d];
+    }
+  }
+  return m;
+}
+
+struct SteadyResult {
+  int steps = 0;
+  fluid::FluidStepReport last;
+};
+
+// Steps until the step's velocity change (relative to max |u|) falls below tol.
+inline SteadyResult march_to_steady(fluid::FluidSolver& s, double tol, int max_steps) {
+  SteadyResult r;
+  std::vector<double> prev(s.velocity().begin(), s.velocity().end());
+  for (r.steps = 1; r.steps <= max_steps; ++r.steps) {
+    r.last = s.step();
+    double du = 0.0, um = 0.0;
+    const auto u = s.velocity();
+    for (size_t i = 0; i < u.size(); ++i) {
+      du = std::max(du, std::abs(u[i] - prev[i]));
+      um = std::max(um, std::abs(u[i]));
+      prev[i] = u[i];
+    }
+    if (du <= tol * um) break;
+  }
+  return r;
+}
+
+// sqrt(int |u_h - u|^2) and sqrt(int (p_h - pbar_h - (p - pbar))^2) with the degree-2 4-point rule.
+struct L2Errors {
+  double velocity = 0.0, pressure = 0.0, velocity_norm = 0.0;
+};
+template <class U, class P>
+L2Errors l2_errors(const fluid::FluidSolver& s, U exact_u, P exact_p) {
+  constexpr double a = 0.5854101966249685, b = 0.1381966011250105;
+  const auto x = s.nodes();
+  const auto tets = s.tets();
+  const auto vol = s.volumes();
+  const auto u = s.velocity();
+  const auto p = s.pressure();
+  const size_t nt = vol.size();
+  // Means of p_h and p.
+  double ph_mean = 0.0, p_mean = 0.0, vtot = 0.0;
+  L2Errors e;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t t = 0; t < nt; ++t) {
+      for (int q = 0; q < 4; ++q) {
+        double lam[4];
+        for (int c = 0; c < 4; ++c) lam[c] = c == q ? a : b;
+        Vec3 xq{0, 0, 0}, uh{0, 0, 0};
+        double phq = 0.0;
+        for (int c = 0; c < 4; ++c) {
+          const size_t n = static_cast<size_t>(tets[4 * t + c]);
+          for (int d = 0; d < 3; ++d) {
+            xq[d] += lam[c] * x[3 * n + d];
+            uh[d] += lam[c] * u[3 * n + d];
+          }
+          phq += lam[c] * p[n];
+        }
+        const double w = vol[t] / 4.0;
+        const double pq = exact_p(xq);
+        if (pass == 0) {
+          ph_mean += w * phq;
+          p_mean += w * pq;
+          vtot += w;
+        } else {
+          const Vec3 ue = exact_u(xq);
+          for (int d = 0; d < 3; ++d) {
+            e.velocity += w * (uh[d] - ue[d]) * (uh[d] - ue[d]);
+            e.velocity_norm += w * ue[d] * ue[d];
+          }
+          const double dp = (phq - ph_mean) - (pq - p_mean);
+          e.pressure += w * dp * dp;
+        }
+      }
+    }
+    if (pass == 0) {
+      ph_mean /= vtot;
+      p_mean /= vtot;
+    }
+  }
+  e.velocity = std::sqrt(e.velocity);
+  e.pressure = std::sqrt(e.pressure);
+  e.velocity_norm = std::sqrt(e.velocity_norm);
+  return e;
+}
+
+}  // namespace rift::fluid_test

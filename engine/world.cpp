@@ -6,6 +6,7 @@
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/msh_reader.hpp"
+#include "engine/mesh/spatial_order.hpp"
 #include "systems/mesh_conversion_model.hpp"
 #include "systems/solid_model.hpp"
 
@@ -47,6 +48,7 @@ std::unique_ptr<World> build_world(const Scene& scene) {
   auto world = std::make_unique<World>();
   const auto t0 = std::chrono::steady_clock::now();
   world->mesh = load_mesh(scene.mesh);
+  order_along_curve(world->mesh);  // neighbours close in memory (engine/mesh/spatial_order.hpp)
   world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   world->mesh_quality = measure_quality(world->mesh);
   if (scene.solid)

@@ -10,10 +10,7 @@
 
 #include "engine/mesh/structured_box.hpp"
 #include "systems/fluid/fluid_solver.hpp"
-
-namespace {
-std::atomic<long> allocations{0};
-}
+#include "tests/unit/test_allocation_counter.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 // LeakSanitizer's exit-time scan crashes in this executable (Open MPI's threads are still running, as
@@ -23,49 +20,6 @@ extern "C" const char* __lsan_default_options() {
   return "detect_leaks=0";
 }
 #endif
-
-// Every replaceable form goes through malloc/free, so pairs always match (the library's temporary
-// buffers use the nothrow form, for example).
-namespace {
-void* counted_malloc(std::size_t n) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(n ? n : 1);
-}
-}  // namespace
-
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t n) {
-  if (void* p = counted_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) {
-  if (void* p = counted_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  return counted_malloc(n);
-}
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  return counted_malloc(n);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, const std::nothrow_t&) noexcept {
-  std::free(p);
-}
 
 TEST(FluidAllocation, StepsAllocateNothing) {
   using namespace rift;

@@ -4,31 +4,9 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/tet_faces.hpp"
 
 namespace rift {
-
-namespace {
-
-// Outward faces of a positively oriented tet, as corner indices; face k is opposite corner k.
-constexpr int32_t face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-struct FaceKey {
-  std::array<int32_t, 3> v;
-  bool operator==(const FaceKey& o) const { return v == o.v; }
-};
-struct FaceKeyHash {
-  size_t operator()(const FaceKey& k) const {
-    uint64_t h = 1469598103934665603ull;
-    for (int32_t x : k.v) h = (h ^ static_cast<uint32_t>(x)) * 1099511628211ull;
-    return h;
-  }
-};
-FaceKey key_of(std::array<int32_t, 3> v) {
-  std::sort(v.begin(), v.end());
-  return {v};
-}
-
-}  // namespace
 
 DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bool(size_t)>& in_zone) {
   DiscontinuousMesh out;
@@ -67,8 +45,8 @@ DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bo
   for (size_t e = 0; e < nt; ++e)
     for (int f = 0; f < 4; ++f) {
       std::array<int32_t, 3> v;
-      for (int i = 0; i < 3; ++i) v[i] = mesh.tets[e][face_corners[f][i]];
-      const FaceKey key = key_of(v);
+      for (int i = 0; i < 3; ++i) v[i] = mesh.tets[e][kTetFaceCorners[f][i]];
+      const FaceKey key = face_key(v);
       auto it = open_faces.find(key);
       if (it == open_faces.end()) {
         open_faces.emplace(key, std::make_pair(static_cast<int32_t>(e), f));
@@ -80,7 +58,7 @@ DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bo
       // Corners 0-2: tet A's face reversed; 3-5: the copies in tet B of the same vertices.
       std::array<int32_t, 6> joint;
       for (int i = 0; i < 3; ++i) {
-        const int corner = face_corners[fa][2 - i];
+        const int corner = kTetFaceCorners[fa][2 - i];
         joint[i] = out.tets[a][corner];
         const int32_t vertex = mesh.tets[a][corner];
         int kb = 0;
@@ -95,7 +73,7 @@ DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bo
   // Boundary triangles onto the copies of the tet they bound (the faces still open).
   out.triangles.resize(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto it = open_faces.find(key_of(mesh.triangles[t]));
+    const auto it = open_faces.find(face_key(mesh.triangles[t]));
     if (it == open_faces.end())
       throw Error("mesh: surface triangle " + std::to_string(t) + " (vertices " +
                   std::to_string(mesh.triangles[t][0]) + ", " + std::to_string(mesh.triangles[t][1]) + ", " +

@@ -4,34 +4,15 @@
 #include <numeric>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/tet_faces.hpp"
 #include "engine/schedule/parallel.hpp"
 
 namespace rift {
 
 namespace {
-
-// Outward faces of a positively oriented tet, as corner indices; face k is opposite corner k.
-constexpr int face_corners[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
-// Hash of a sorted vertex triple (the map compares the triple itself).
-uint64_t face_key(const std::array<int32_t, 3>& v) {
-  return (static_cast<uint64_t>(v[0]) * 0x9E3779B97F4A7C15ull) ^ (static_cast<uint64_t>(v[1]) << 21) ^
-         (static_cast<uint64_t>(v[2]) * 0xC2B2AE3D27D4EB4Full);
-}
-
-struct SortedFace {
-  std::array<int32_t, 3> v;
-  bool operator==(const SortedFace& o) const { return v == o.v; }
-};
-struct SortedFaceHash {
-  size_t operator()(const SortedFace& f) const { return face_key(f.v); }
-};
-SortedFace sorted(std::array<int32_t, 3> v) {
-  std::sort(v.begin(), v.end());
-  return {v};
-}
 
 // The local face of a tet that holds three of its corners (the corner left out), or -1.
 int face_holding(const int32_t* tet, const int32_t* corners) {
@@ -135,13 +116,13 @@ void MeshConversion::build_indices(const SolidTopology& topology) {
 void MeshConversion::build_surface(const SolidTopology& topology) {
   const size_t tets = tet_nodes_.size() / 4, joints = joint_tets_.size() / 2;
   // Faces by input vertices: seen once means external. Joint faces are seen twice (both tets).
-  std::unordered_map<SortedFace, int32_t, SortedFaceHash> open;  // face -> 4 * tet + local face
+  std::unordered_map<FaceKey, int32_t, FaceKeyHash> open;  // face -> 4 * tet + local face
   open.reserve(2 * tets);
   for (size_t e = 0; e < tets; ++e)
     for (int f = 0; f < 4; ++f) {
       std::array<int32_t, 3> v;
-      for (int i = 0; i < 3; ++i) v[i] = topology.node_vertex[tet_nodes_[4 * e + face_corners[f][i]]];
-      const auto [it, inserted] = open.try_emplace(sorted(v), static_cast<int32_t>(4 * e + f));
+      for (int i = 0; i < 3; ++i) v[i] = topology.node_vertex[tet_nodes_[4 * e + kTetFaceCorners[f][i]]];
+      const auto [it, inserted] = open.try_emplace(face_key(v), static_cast<int32_t>(4 * e + f));
       if (inserted) continue;
       if (it->second < 0)
         throw Error("mesh conversion: the face with input vertices " + std::to_string(v[0]) + ", " +
@@ -149,8 +130,8 @@ void MeshConversion::build_surface(const SolidTopology& topology) {
                     " is shared by more than two tetrahedra; the solid mesh is not a valid tet mesh");
       it->second = -1;  // interior
     }
-  std::unordered_map<SortedFace, bool, SortedFaceHash> notch;
-  for (const auto& t : topology.notch_triangles) notch.emplace(sorted(t), true);
+  std::unordered_set<FaceKey, FaceKeyHash> notch;
+  for (const auto& t : topology.notch_triangles) notch.insert(face_key(t));
 
   tet_face_triangle_.assign(4 * tets, -1);
   // External faces in tet order, so the surface does not depend on the hash map's iteration order.
@@ -169,8 +150,8 @@ void MeshConversion::build_surface(const SolidTopology& topology) {
     const int32_t e = static_cast<int32_t>(slot / 4);
     const int f = static_cast<int>(slot % 4);
     std::array<int32_t, 3> v;
-    for (int i = 0; i < 3; ++i) v[i] = topology.node_vertex[tet_nodes_[4 * e + face_corners[f][i]]];
-    add_triangle(e, f, notch.count(sorted(v)) ? SurfaceTag::notch : SurfaceTag::boundary, -1.0, -1);
+    for (int i = 0; i < 3; ++i) v[i] = topology.node_vertex[tet_nodes_[4 * e + kTetFaceCorners[f][i]]];
+    add_triangle(e, f, notch.count(face_key(v)) ? SurfaceTag::notch : SurfaceTag::boundary, -1.0, -1);
   }
   external_triangles_ = external;
 }
@@ -178,7 +159,7 @@ void MeshConversion::build_surface(const SolidTopology& topology) {
 void MeshConversion::add_triangle(int32_t tet, int face, SurfaceTag tag, double time, int32_t joint) {
   const int32_t t = static_cast<int32_t>(tri_tag_.size());
   for (int i = 0; i < 3; ++i) {
-    const int32_t node = tet_nodes_[4 * tet + face_corners[face][i]];
+    const int32_t node = tet_nodes_[4 * tet + kTetFaceCorners[face][i]];
     tri_nodes_.push_back(node);
     tri_vertices_.push_back(copy_vertex_[node]);
   }

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <limits>
 
+#include "engine/mesh/block_assembly.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/msh_reader.hpp"
@@ -27,6 +28,8 @@ double World::stable_dt() const {
 
 TetMesh load_mesh(const MeshSpec& spec) {
   if (spec.file) return read_msh(*spec.file, spec.scale);
+  if (spec.generate->shape == MeshGenerateSpec::Shape::blocks)
+    return generate_block_assembly(spec.generate->blocks);
   if (spec.generate->shape == MeshGenerateSpec::Shape::cylinder)
     return generate_cylinder_mesh(*spec.generate);
   return generate_box_mesh(*spec.generate);

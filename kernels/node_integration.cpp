@@ -23,11 +23,14 @@ NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s
       }
       f[src][0] = fx, f[src][1] = fy, f[src][2] = fz;
     }
+    double fc[3] = {0.0, 0.0, 0.0};
+    if (!a.node_force.empty())
+      for (int c = 0; c < 3; ++c) fc[c] = a.node_force[3 * n + c];
     const double w = a.inv_mass[n], m = a.mass[n];
     bool finite = true;
     for (int c = 0; c < 3; ++c) {
       const size_t i = 3 * n + c;
-      const double internal = f[0][c] + f[1][c];
+      const double internal = f[0][c] + f[1][c] + fc[c];
       const double total = internal + f[2][c];
       a.f[i] = total;
       const double v_old = a.v[i];
@@ -41,6 +44,7 @@ NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s
       const double dx = 0.5 * a.dt * (v_old + v);
       r.work[0] += f[0][c] * dx;
       r.work[1] += f[1][c] * dx;
+      r.work[3] += fc[c] * dx;
       // External: loads and gravity on a free component; on a held one, whatever the prescribed motion
       // needed beyond the internal forces (load + gravity + reaction = m dv/dt - internal).
       r.work[2] +=

@@ -32,14 +32,18 @@ struct NodeIntegrationArgs {
   std::span<const uint8_t> free_mask;      // 3 per node: 1 integrate, 0 held at the prescribed velocity
   std::span<const int32_t> held_velocity;  // 3 per node: condition index per component (-1: velocity 0)
   std::span<const double> prescribed;      // 3 per boundary condition: velocity at t + dt/2
+  // 3 per node, or empty: forces gathered per node by a producer whose pairs change between steps
+  // (contact), internal like sources 0 and 1; their work is booked as work[3].
+  std::span<const double> node_force = {};
 };
 
 struct NodeStepResult {
   size_t non_finite = 0;  // nodes whose new position or velocity is not finite (0 in a healthy run)
-  double work[3] = {0.0, 0.0, 0.0};  // work of source 0, source 1, and everything external [J]
+  // work of source 0, source 1, everything external, and node_force [J]
+  double work[4] = {0.0, 0.0, 0.0, 0.0};
   NodeStepResult& operator+=(const NodeStepResult& o) {
     non_finite += o.non_finite;
-    for (int k = 0; k < 3; ++k) work[k] += o.work[k];
+    for (int k = 0; k < 4; ++k) work[k] += o.work[k];
     return *this;
   }
 };

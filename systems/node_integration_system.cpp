@@ -15,6 +15,7 @@ NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoun
     : store_(store), conditions_(std::move(conditions)), gravity_(gravity) {
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
+  contact_ = store_.table(solid::node_table).has("contact_force");
   blocks_.resize((nodes + grain - 1) / grain);
 }
 
@@ -31,9 +32,14 @@ Access NodeIntegrationSystem::access() const {
                                  col(solid::slot_table, "slot")};
   if (store_.has(solid::joint_table)) reads.push_back(col(solid::joint_table, "corner_force"));
   const char* E = solid::energy_table;
-  return {reads,
-          {col(N, "x"), col(N, "v"), col(N, "f"), col(E, "external_work"), col(E, "tet_work"),
-           col(E, "joint_work")}};
+  std::vector<std::string> writes{col(N, "x"),        col(N, "v"),
+                                  col(N, "f"),        col(E, "external_work"),
+                                  col(E, "tet_work"), col(E, "joint_work")};
+  if (contact_) {
+    reads.push_back(col(N, "contact_force"));
+    writes.push_back(col(E, "contact_work"));
+  }
+  return {reads, writes};
 }
 
 void NodeIntegrationSystem::run(const StepContext& ctx) {
@@ -45,16 +51,18 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
     for (int k = 0; k < 3; ++k) prescribed_[3 * i + k] = c.direction[k] * scale;
   }
   Table& nodes = store_.table(solid::node_table);
-  const kernels::NodeIntegrationArgs args{ctx.dt,
-                                          {gravity_[0], gravity_[1], gravity_[2]},
-                                          nodes.span<double>("x"),
-                                          nodes.span<double>("v"),
-                                          nodes.span<double>("f"),
-                                          nodes.span<double>("mass"),
-                                          nodes.span<double>("inv_mass"),
-                                          nodes.span<uint8_t>("free"),
-                                          nodes.span<int32_t>("held"),
-                                          prescribed_};
+  const kernels::NodeIntegrationArgs args{
+      ctx.dt,
+      {gravity_[0], gravity_[1], gravity_[2]},
+      nodes.span<double>("x"),
+      nodes.span<double>("v"),
+      nodes.span<double>("f"),
+      nodes.span<double>("mass"),
+      nodes.span<double>("inv_mass"),
+      nodes.span<uint8_t>("free"),
+      nodes.span<int32_t>("held"),
+      prescribed_,
+      contact_ ? nodes.span<double>("contact_force") : std::span<double>{}};
   const Table& tets = store_.table(solid::tet_table);
   const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
   const Table& faces = store_.table(solid::face_table);
@@ -77,6 +85,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   energy.span<double>("tet_work")[0] += total.work[0];
   energy.span<double>("joint_work")[0] += total.work[1];
   energy.span<double>("external_work")[0] += total.work[2];
+  if (contact_) energy.span<double>("contact_work")[0] += total.work[3];
 }
 
 }  // namespace rift

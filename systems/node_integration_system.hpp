@@ -1,7 +1,8 @@
 #pragma once
 // The node pass: gathers every producer's corner forces, then advances velocities and positions
 // by central difference, holding constrained components at their prescribed velocity, and books the
-// work of internal and external forces over the step in the solid_energy table.
+// work of internal and external forces over the step in the solid_energy table. With contact, the
+// per-node contact forces (solid_node.contact_force) join the internal forces.
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -29,6 +30,7 @@ class NodeIntegrationSystem : public System {
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<kernels::NodeStepResult> blocks_;
   size_t non_finite_ = 0;
+  bool contact_ = false;  // solid_node.contact_force exists (a contact system gathers into it)
 };
 
 }  // namespace rift

@@ -18,11 +18,15 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   const DiscontinuousMesh dm = make_discontinuous(mesh, [&](size_t e) { return zone[e] != 0; });
   build_nodes_and_tets(dm, mesh);
   assign_materials(mesh);
+  apply_initial_velocity(mesh);
   apply_boundaries(dm, mesh);
   if (spec_.fracture) build_joints(dm);
   build_force_slots();
   compute_mass_and_stable_dt();
   create_bookkeeping_tables();
+  if (spec_.fracture) apply_initial_cracks();
+  if (spec_.contact) build_contact(mesh);
+  store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
 
   std::vector<double> prestress;
   if (spec_.initial_stress)
@@ -55,19 +59,33 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
     stable_dt_ = 1.0 / std::sqrt(1.0 / (tet_stable_dt_ * tet_stable_dt_) +
                                  3.0 / (joint_stable_dt_ * joint_stable_dt_));
   }
+  if (contact_) {
+    // The contact springs act on face corners on top of everything else: their omega^2 adds.
+    const double dt_c = contact_->stable_step();
+    stable_dt_ = 1.0 / std::sqrt(1.0 / (stable_dt_ * stable_dt_) + 1.0 / (dt_c * dt_c));
+  } else if (spec_.fracture) {
+    spdlog::warn(
+        "solid: a fracture zone without solid.contact: the faces of broken joints will pass "
+        "through each other; add a solid.contact section to make them touch");
+  }
   const size_t joints = joint_count();
   spdlog::info(
       "solid: {} tets ({} in the fracture zone, {:.1f} %), {} nodes, {} joints, {} loaded faces",
       store_.table(solid::tet_table).size(), zone_tets_,
       100.0 * static_cast<double>(zone_tets_) / std::max<size_t>(1, store_.table(solid::tet_table).size()),
       store_.table(solid::node_table).size(), joints, store_.table(solid::face_table).size());
-  spdlog::info("solid: stable step {:.4g} s (tets {:.4g} s, set by tet {}; joints {:.4g} s)", stable_dt_,
-               tet_stable_dt_, critical_tet_, joint_stable_dt_);
+  spdlog::info(
+      "solid: stable step {:.4g} s (tets {:.4g} s, set by tet {}; joints {:.4g} s; contact {:.4g} s)",
+      stable_dt_, tet_stable_dt_, critical_tet_, joint_stable_dt_,
+      contact_ ? contact_->stable_step() : INFINITY);
 }
 
 std::vector<System*> SolidModel::systems() {
-  if (joint_forces_) return {loads_.get(), tet_forces_.get(), joint_forces_.get(), integration_.get()};
-  return {loads_.get(), tet_forces_.get(), integration_.get()};
+  std::vector<System*> all{loads_.get(), tet_forces_.get()};
+  if (joint_forces_) all.push_back(joint_forces_.get());
+  if (contact_) all.push_back(contact_.get());
+  all.push_back(integration_.get());
+  return all;
 }
 
 size_t SolidModel::joint_count() const {
@@ -118,18 +136,31 @@ std::optional<std::string> SolidModel::check_health(const StepContext& after) {
 std::optional<std::string> SolidModel::check_energy(const StepContext& after) {
   const SolidEnergies e = energies();
   const double scale = std::abs(e.external_work) + e.kinetic + std::abs(e.elastic) +
-                       std::abs(e.joint_stored) + e.damping + std::abs(e.fracture);
+                       std::abs(e.joint_stored) + e.damping + std::abs(e.fracture) + e.contact_stored +
+                       e.friction + e.contact_damping;
   largest_energy_ = std::max(largest_energy_, scale);
   const double error = e.balance_error();
-  if (std::isfinite(error) && std::abs(error) <= 0.1 * largest_energy_ + energy_floor_) return std::nullopt;
+  const double tolerance = 0.1 * largest_energy_ + energy_floor_;
+  if (e.contact_stored < -tolerance) {
+    std::ostringstream why;
+    why << "contact is putting energy into the solid at step " << after.step << ", t = " << after.time
+        << " s: the contact forces did " << -(e.contact_stored + e.friction + e.contact_damping)
+        << " J of net work on it against a largest energy of " << largest_energy_
+        << " J. Likely cause: the contact penalty is too stiff for the step (contact stable step "
+        << contact_->stable_step() << " s) or bodies hit too fast for it. What to change: reduce time.dt or "
+        << "time.safety, or lower solid.contact.penalty.";
+    return why.str();
+  }
+  if (std::isfinite(error) && std::abs(error) <= tolerance) return std::nullopt;
   std::ostringstream why;
   why << "energy is not conserved at step " << after.step << ", t = " << after.time << " s: external work "
       << e.external_work << " J, but kinetic " << e.kinetic << " + elastic " << e.elastic << " + joints "
-      << e.joint_stored << " + damping " << e.damping << " + fracture " << e.fracture << " J (error " << error
+      << e.joint_stored << " + damping " << e.damping << " + fracture " << e.fracture << " + contact "
+      << e.contact_stored + e.friction + e.contact_damping << " J (error " << error
       << " J). Energy growing without work to feed it is a numerical instability. "
       << "Likely cause: a step above the stable one (" << stable_dt_
-      << " s) or a joint penalty too stiff for the step. What to change: reduce time.dt or time.safety, or "
-         "lower the joint penalty.";
+      << " s) or a joint or contact penalty too stiff for the step. What to change: reduce time.dt or "
+         "time.safety, or lower the joint (or contact) penalty.";
   return why.str();
 }
 
@@ -152,11 +183,25 @@ void SolidModel::summarize(nlohmann::json& summary) const {
                  {"joint_stored", e.joint_stored},
                  {"damping", e.damping},
                  {"fracture", e.fracture},
+                 {"contact_stored", e.contact_stored},
+                 {"friction", e.friction},
+                 {"contact_damping", e.contact_damping},
                  {"external_work", e.external_work},
                  {"balance_error", e.balance_error()}};
-  size_t tensile = 0;
-  for (uint8_t m : store_.table(solid::event_table).span<const uint8_t>("mode")) tensile += m == 1;
-  s["fractures"] = {{"tensile", tensile}, {"shear", broken_joint_count() - tensile}};
+  size_t count[4] = {0, 0, 0, 0};
+  for (uint8_t m : store_.table(solid::event_table).span<const uint8_t>("mode")) ++count[m & 3];
+  s["fractures"] = {{"tensile", count[1]}, {"shear", count[2]}, {"initial", count[3]}};
+  if (contact_) {
+    const ContactTotals c = contact_->totals();
+    s["contact"] = {{"bodies", contact_->bodies()},
+                    {"candidates", c.candidates},
+                    {"pairs", c.pairs},
+                    {"touching", c.touching},
+                    {"detections", c.detections},
+                    {"penalty", contact_->law().penalty},
+                    {"buffer", contact_->buffer()},
+                    {"stable_dt", contact_->stable_step()}};
+  }
 }
 
 }  // namespace rift

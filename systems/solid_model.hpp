@@ -6,7 +6,8 @@
 //
 // Member definitions are split by concern: solid_model.cpp (assembly, step limit, health, summary),
 // solid_model_setup.cpp (nodes, tets, materials, boundaries, force slots, mass), solid_model_joints.cpp
-// (joint table, joint materials, in-situ state) and solid_model_output.cpp (fields, metrics, logs).
+// (joint table, joint materials, in-situ state, initial cracks, contact) and solid_model_output.cpp (fields,
+// metrics, logs).
 #include <memory>
 
 #include "engine/core/table.hpp"
@@ -14,6 +15,7 @@
 #include "engine/mesh/tet_mesh.hpp"
 #include "engine/model.hpp"
 #include "engine/scene/scene.hpp"
+#include "systems/contact_system.hpp"
 #include "systems/joint_force_system.hpp"
 #include "systems/node_integration_system.hpp"
 #include "systems/surface_load_system.hpp"
@@ -24,8 +26,13 @@ namespace rift {
 // Energies of the solid at one instant [J]; see docs/architecture.md "Energy balance".
 struct SolidEnergies {
   double kinetic = 0, elastic = 0, joint_stored = 0, damping = 0, fracture = 0, external_work = 0;
+  // Contact: dissipated by friction and normal damping (from the contact kernel), and stored in the
+  // overlaps and friction springs (the rest of what the contact forces took). A contact that puts energy
+  // in (an unstable penalty) shows as a negative stored energy, which the energy guard checks.
+  double contact_stored = 0, friction = 0, contact_damping = 0;
   double balance_error() const {
-    return external_work - (kinetic + elastic + joint_stored + damping + fracture);
+    return external_work - (kinetic + elastic + joint_stored + damping + fracture + contact_stored +
+                            friction + contact_damping);
   }
 };
 
@@ -53,6 +60,7 @@ class SolidModel : public Model {
   void build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh& mesh);
   void assign_materials(const TetMesh& mesh);
   std::vector<uint8_t> fracture_zone(const TetMesh& mesh) const;
+  void apply_initial_velocity(const TetMesh& mesh);  // before boundaries: held components override it
   void apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& mesh);
   size_t hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index);  // nodes held
   void build_joints(const DiscontinuousMesh& dm);
@@ -60,6 +68,8 @@ class SolidModel : public Model {
   void build_force_slots();
   void compute_mass_and_stable_dt();
   void create_bookkeeping_tables();
+  void apply_initial_cracks();
+  void build_contact(const TetMesh& mesh);
   std::optional<std::string> check_energy(const StepContext& after);
 
   Store& store_;
@@ -76,6 +86,7 @@ class SolidModel : public Model {
   std::unique_ptr<SurfaceLoadSystem> loads_;
   std::unique_ptr<TetForceSystem> tet_forces_;
   std::unique_ptr<JointForceSystem> joint_forces_;
+  std::unique_ptr<ContactSystem> contact_;  // with solid.contact only
   std::unique_ptr<NodeIntegrationSystem> integration_;
   // Output scratch, reused between outputs.
   std::vector<double> displacement_, principal_, reaction_;

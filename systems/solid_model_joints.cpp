@@ -1,5 +1,7 @@
 // SolidModel set-up of the fracture zone: the joint table, joint materials per pair of tet materials,
 // the in-situ state of every joint, and the bookkeeping tables (fracture events, energy integrals).
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <map>
 
@@ -126,9 +128,90 @@ void SolidModel::create_bookkeeping_tables() {
   events.add<double>("normal", 3);
   events.add<double>("area");
   Table& energy = store_.add_table(solid::energy_table);
-  for (const char* c : {"external_work", "tet_work", "joint_work", "damping", "joint_energy0"})
+  for (const char* c : {"external_work", "tet_work", "joint_work", "damping", "joint_energy0", "kinetic0"})
     energy.add<double>(c);
   energy.resize(1);
+}
+
+}  // namespace rift
+
+namespace rift {
+
+// Joints on the planes of solid.fracture.initial_cracks start broken: mode 3 in the joint table and one
+// row each at the head of the fracture log (step -1, time 0), so the mesh conversion and the contact
+// see them like any break, while the fracture energy (joint work) stays zero.
+void SolidModel::apply_initial_cracks() {
+  if (spec_.fracture->initial_cracks.empty()) return;
+  Table& joints = store_.table(solid::joint_table);
+  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  const auto conn = joints.span<const int32_t>("nodes");
+  auto broken = joints.span<uint8_t>("broken");
+  Table& events = store_.table(solid::event_table);
+  size_t cracked = 0;
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const double* p[3] = {&x0[3 * conn[6 * j]], &x0[3 * conn[6 * j + 1]], &x0[3 * conn[6 * j + 2]]};
+    double edge = 0.0, centroid[3], n[3];
+    for (int i = 0; i < 3; ++i) centroid[i] = (p[0][i] + p[1][i] + p[2][i]) / 3.0;
+    for (int a = 0; a < 3; ++a) {
+      const double* q = p[(a + 1) % 3];
+      edge = std::max(edge, std::hypot(q[0] - p[a][0], q[1] - p[a][1], q[2] - p[a][2]));
+    }
+    bool on_crack = false;
+    for (const CrackPlaneSpec& c : spec_.fracture->initial_cracks) {
+      const double len = std::hypot(c.normal[0], c.normal[1], c.normal[2]);
+      bool on = true;
+      for (int a = 0; a < 3 && on; ++a) {
+        const double d = ((p[a][0] - c.point[0]) * c.normal[0] + (p[a][1] - c.point[1]) * c.normal[1] +
+                          (p[a][2] - c.point[2]) * c.normal[2]) /
+                         len;
+        on = std::abs(d) <= 1e-6 * edge;
+      }
+      if (on && c.radius)
+        on = std::hypot(centroid[0] - c.point[0], centroid[1] - c.point[1], centroid[2] - c.point[2]) <=
+             *c.radius;
+      on_crack = on_crack || on;
+    }
+    if (!on_crack) continue;
+    broken[j] = 3;
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+    const double area2 = std::hypot(n[0], n[1], n[2]);
+    const size_t row = events.size();
+    events.resize(row + 1);
+    events.span<int64_t>("step")[row] = -1;
+    events.span<double>("time")[row] = 0.0;
+    events.span<int32_t>("joint")[row] = static_cast<int32_t>(j);
+    events.span<uint8_t>("mode")[row] = 3;
+    for (int i = 0; i < 3; ++i) {
+      events.span<double>("centroid")[3 * row + i] = centroid[i];
+      events.span<double>("normal")[3 * row + i] = area2 > 0 ? n[i] / area2 : 0.0;
+    }
+    events.span<double>("area")[row] = 0.5 * area2;
+    ++cracked;
+  }
+  if (cracked == 0)
+    throw Error(
+        "solid.fracture.initial_cracks: no joint lies on any of the planes; the mesh needs faces on "
+        "the crack plane (a lattice mesh, or a mesh file with the crack as an internal surface), and "
+        "the plane must cross the fracture zone");
+  spdlog::info("solid: {} joints start broken on {} initial crack plane(s)", cracked,
+               spec_.fracture->initial_cracks.size());
+}
+
+// The contact penalty defaults to 10 x the stiffest material (femdem.md 1d: 10-100 E).
+void SolidModel::build_contact(const TetMesh& mesh) {
+  ContactSpec contact = *spec_.contact;
+  if (!contact.penalty) {
+    double young = 0.0;
+    for (const auto& m : spec_.materials) young = std::max(young, m.young);
+    contact.penalty = 10.0 * young;
+  }
+  const Table& tets = store_.table(solid::tet_table);
+  const auto material = tets.span<const int32_t>("material");
+  std::vector<double> density(tets.size());
+  for (size_t e = 0; e < tets.size(); ++e) density[e] = spec_.materials[material[e]].density;
+  contact_ = std::make_unique<ContactSystem>(store_, contact, mesh.nodes.size(), density);
 }
 
 }  // namespace rift

@@ -74,6 +74,7 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
   node_field("displacement", displacement_.data());
   node_field("velocity", nodes.span<double>("v").data());
   node_field("force", nodes.span<double>("f").data());
+  if (contact_) node_field("contact_force", nodes.span<double>("contact_force").data());
   cell_field(g, "stress", 6, ElementType::f64, stress.data());
   cell_field(g, "principal_stress", 3, ElementType::f64, principal_.data());
   cell_field(g, "energy", 1, ElementType::f64, tets.span<double>("energy").data());
@@ -112,7 +113,8 @@ SolidEnergies SolidModel::energies() const {
         0.5 * m[n] * (v[3 * n] * v[3 * n] + v[3 * n + 1] * v[3 * n + 1] + v[3 * n + 2] * v[3 * n + 2]);
   for (double w : store_.table(solid::tet_table).span<const double>("energy")) e.elastic += w;
   const Table& book = store_.table(solid::energy_table);
-  e.external_work = book.span<const double>("external_work")[0];
+  // Kinetic energy at t = 0 (an initial velocity) counts as work done before the run.
+  e.external_work = book.span<const double>("external_work")[0] + book.span<const double>("kinetic0")[0];
   e.damping = book.span<const double>("damping")[0];
   if (store_.has(solid::joint_table)) {
     double stored = 0.0;
@@ -120,6 +122,15 @@ SolidEnergies SolidModel::energies() const {
     e.joint_stored = stored - book.span<const double>("joint_energy0")[0];
     // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took.
     e.fracture = -book.span<const double>("joint_work")[0] - e.joint_stored;
+  }
+  if (contact_) {
+    // Stored in the overlaps and the friction springs: what the contact forces took (minus their work)
+    // less what friction and damping dissipated. The kernel's direct overlap energy is not used: its
+    // boundary integral does not close where faces lie in each other's planes (lattice faces touching).
+    e.friction = book.span<const double>("friction")[0];
+    e.contact_stored = -book.span<const double>("contact_work")[0] - e.friction -
+                       book.span<const double>("contact_damping")[0];
+    e.contact_damping = book.span<const double>("contact_damping")[0];
   }
   return e;
 }
@@ -134,6 +145,16 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
   row.emplace_back("solid_external_work", e.external_work);
   row.emplace_back("solid_energy_balance_error", e.balance_error());
   row.emplace_back("solid_broken_joints", static_cast<double>(broken_joint_count()));
+  if (contact_) {
+    const ContactTotals c = contact_->totals();
+    row.emplace_back("contact_pairs", static_cast<double>(c.pairs));
+    row.emplace_back("contact_touching", static_cast<double>(c.touching));
+    row.emplace_back("contact_sliding", static_cast<double>(c.sliding));
+    row.emplace_back("contact_energy", e.contact_stored);
+    row.emplace_back("contact_friction_dissipation", e.friction);
+    row.emplace_back("contact_damping_dissipation", e.contact_damping);
+    row.emplace_back("contact_detections", static_cast<double>(c.detections));
+  }
   // Support reactions per surface with prescribed motion: minus the force the body exerts on the held
   // components (quasi-static: the inertia of the held nodes is left out). The load a platen applies.
   std::vector<std::string> surfaces;
@@ -173,8 +194,8 @@ void SolidModel::write_logs(const std::filesystem::path& dir) const {
   for (size_t r = 0; r < ev.size(); ++r)
     csv += fmt::format("{},{:.17g},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
                        step[r], time[r], joint[r], tets[2 * joint[r]], tets[2 * joint[r] + 1],
-                       mode[r] == 1 ? "tensile" : "shear", c[3 * r], c[3 * r + 1], c[3 * r + 2], n[3 * r],
-                       n[3 * r + 1], n[3 * r + 2], area[r]);
+                       mode[r] == 1 ? "tensile" : (mode[r] == 2 ? "shear" : "initial"), c[3 * r],
+                       c[3 * r + 1], c[3 * r + 2], n[3 * r], n[3 * r + 1], n[3 * r + 2], area[r]);
   write_text_atomic(dir / "fractures.csv", csv);
 }
 

@@ -136,6 +136,22 @@ void SolidModel::assign_materials(const TetMesh& mesh) {
                   "' has no material; list that region in a material's regions (or use 'all')");
 }
 
+void SolidModel::apply_initial_velocity(const TetMesh& mesh) {
+  Table& tets = store_.table(solid::tet_table);
+  const auto conn = tets.span<const int32_t>("nodes");
+  const auto region = tets.span<const int32_t>("region");
+  auto v = store_.table(solid::node_table).span<double>("v");
+  for (size_t i = 0; i < spec_.initial_velocity.size(); ++i) {
+    const InitialVelocitySpec& iv = spec_.initial_velocity[i];
+    const auto applies =
+        select_regions(mesh, iv.regions, "solid.initial_velocity[" + std::to_string(i) + "].regions");
+    for (size_t e = 0; e < tets.size(); ++e)
+      if (applies[region[e]])
+        for (int k = 0; k < 4; ++k)
+          for (int c = 0; c < 3; ++c) v[3 * conn[4 * e + k] + c] = iv.velocity[c];
+  }
+}
+
 void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& mesh) {
   Table& nodes = store_.table(solid::node_table);
   auto free = nodes.span<uint8_t>("free");

@@ -12,6 +12,8 @@ inline constexpr const char* face_table = "solid_load_face";
 inline constexpr const char* slot_table = "solid_force_slot";
 inline constexpr const char* event_table = "solid_fracture_event";
 inline constexpr const char* energy_table = "solid_energy";
+inline constexpr const char* contact_pair_table = "solid_contact_pair";
+inline constexpr const char* contact_state_table = "solid_contact_state";
 
 // solid_node: x0 (3, reference position), x (3), v (3, at t - dt/2), f (3, total force of the last step),
 // mass (1), inv_mass (1), free (u8 x3), held (i32 x3, velocity condition per component or -1), slots (i32 x2:
@@ -21,6 +23,8 @@ inline constexpr const char* energy_table = "solid_energy";
 // solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),
 //            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear), corner_force (18),
 //            opening, slip, damage, stored_energy (1 each), initial_offset (3, in-situ state; 0 without one)
+//            contact_force (3, with contact only: the contact forces of the step, gathered per node),
+//            x_detect (3, with contact only: positions at the last contact detection)
 // solid_load_face: nodes (i32 x3), load (i32), corner_force (9)
 // solid_force_slot: slot (i32): the corner-force slots of every node, grouped by node: tet corners
 //            [0, 4 T), then joint corners [4 T, 4 T + 6 J), then loaded-face corners
@@ -28,7 +32,14 @@ inline constexpr const char* energy_table = "solid_energy";
 //            mode (u8, as broken), centroid (3), normal (3), area
 // solid_energy: one row of running integrals [J]: external_work (loads, gravity, prescribed motion),
 //            tet_work and joint_work (work done by those forces on the nodes), damping (viscous
-//            dissipation), joint_energy0 (joint stored energy at t = 0, the in-situ state)
+//            dissipation), joint_energy0 (joint stored energy at t = 0, the in-situ state), kinetic0 (kinetic
+//            energy at t = 0, from solid.initial_velocity); with contact
+//            also contact_work (work of the contact forces), friction and contact_damping (dissipation)
+// solid_contact_pair (with contact only): one row per candidate pair of the last detection, sorted:
+//            tets (i32 x2, a < b), history (3, friction force on a), force (24, corner forces of a then b),
+//            normal_force, energy (overlap energy of the potential), spring_energy (friction spring),
+//            friction_dissipation, damping_dissipation (of the last step)
+// solid_contact_state (with contact only): one row: buffer [m], detections (i64), candidates (i64)
 
 inline std::string col(const char* table, const char* column) {
   return std::string(table) + "." + column;

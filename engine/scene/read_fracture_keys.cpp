@@ -1,5 +1,5 @@
-// solid.fracture (where joints exist and how they integrate), solid.materials[i].fracture (joint
-// properties) and solid.initial_stress (in-situ state).
+// solid.fracture (where joints exist, how they integrate, cracks present at t = 0),
+// solid.materials[i].fracture (joint properties), solid.contact and solid.initial_stress (in-situ state).
 #include <cmath>
 
 #include "engine/scene/scene_sections.hpp"
@@ -8,7 +8,20 @@ namespace rift {
 
 namespace {
 constexpr std::array<std::string_view, 2> kSoftening{"energy_exact", "y_compatible"};
+
+CrackPlaneSpec read_crack_plane(MapReader& c) {
+  CrackPlaneSpec crack;
+  crack.point = c.vec3("point", any_real("m"), std::nullopt);
+  crack.normal = c.vec3("normal", any_real(""), std::nullopt);
+  const auto& n = crack.normal;
+  if (c.ok("normal") && !(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0))
+    c.error("normal", "a non-zero vector");
+  crack.radius = c.optional_real("radius", positive("m"));
+  c.finish();
+  return crack;
 }
+
+}  // namespace
 
 FractureMaterialSpec read_fracture_material(MapReader& f, double young) {
   FractureMaterialSpec m;
@@ -50,7 +63,19 @@ FractureSpec read_fracture_section(MapReader& f) {
     f.error("integration_points", "3 or 7 (the triangle rules of the joint)");
   spec.integration_points = static_cast<int>(points);
   spec.y_compatible = f.choice("softening", kSoftening, 0) == 1;
+  for (auto& c : f.section_list("initial_cracks", 0)) spec.initial_cracks.push_back(read_crack_plane(c));
   f.finish();
+  return spec;
+}
+
+ContactSpec read_contact_section(MapReader& c) {
+  ContactSpec spec;
+  spec.penalty = c.optional_real("penalty", positive("Pa"));
+  spec.friction = c.real("friction", non_negative(""), 0.0);
+  spec.tangential_penalty = c.real("tangential_penalty", positive(""), 0.1);
+  spec.damping = c.real("damping", RealRule{"", 0.0, 1.0, true, true}, 0.0);
+  spec.buffer = c.optional_real("buffer", positive("m"));
+  c.finish();
   return spec;
 }
 

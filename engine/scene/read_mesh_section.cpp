@@ -1,4 +1,4 @@
-// mesh: a Gmsh file, or a box (with notches) or a disc the mesher generates.
+// mesh: a Gmsh file, or a box (with notches) or a disc the mesher generates, or lattice blocks.
 #include <filesystem>
 
 #include "engine/scene/number_text.hpp"
@@ -63,20 +63,36 @@ CylinderSpec read_cylinder(MapReader& c) {
   return cylinder;
 }
 
-// Exactly one of box / cylinder. Keys of the shape not used are declared without being read (a silent
-// reader reports nothing), so the docs test knows them whichever shape a scene uses.
+BlockSpec read_block(MapReader& b, size_t index) {
+  BlockSpec block;
+  block.name = b.string("name", "block" + std::to_string(index));
+  block.origin = b.vec3("origin", any_real("m"), std::array<double, 3>{});
+  block.size = b.vec3("size", positive("m"), std::nullopt);
+  const std::array<double, 3> cells = b.vec3("cells", RealRule{"", 1.0, 4096.0, false, false}, std::nullopt);
+  for (int a = 0; a < 3; ++a) block.cells[a] = static_cast<int>(cells[a]);
+  if (b.ok("cells") &&
+      (cells[0] != block.cells[0] || cells[1] != block.cells[1] || cells[2] != block.cells[2]))
+    b.error("cells", "three whole numbers of cubes, each in [1, 4096]");
+  b.finish();
+  return block;
+}
+
+// Exactly one of box / cylinder / blocks. Keys of the shapes not used are declared without being read (a
+// silent reader reports nothing), so the docs test knows them whichever shape a scene uses.
 void read_shape(MapReader& g, MeshGenerateSpec& spec) {
-  const bool has_box = g.has("box"), has_cylinder = g.has("cylinder");
-  if (has_box == has_cylinder && !g.silent())
-    g.context().error(has_box ? g.where("cylinder") : g.where(), "mesh.generate",
-                      "exactly one of mesh.generate.box or mesh.generate.cylinder",
-                      has_box ? "both" : "neither");
-  if (has_box && !has_cylinder) {
+  const bool has_box = g.has("box"), has_cylinder = g.has("cylinder"), has_blocks = g.has("blocks");
+  const int shapes = int(has_box) + int(has_cylinder) + int(has_blocks);
+  if (shapes != 1 && !g.silent())
+    g.context().error(
+        shapes == 0 ? g.where() : g.where(has_box ? (has_cylinder ? "cylinder" : "blocks") : "blocks"),
+        "mesh.generate", "exactly one of mesh.generate.box, .cylinder or .blocks",
+        shapes == 0 ? "none" : "more than one");
+  if (has_box && shapes == 1) {
     spec.size = g.vec3("box", positive("m"), std::nullopt);
   } else {
     g.declare("box");
   }
-  if (has_cylinder && !has_box) {
+  if (has_cylinder && shapes == 1) {
     spec.shape = MeshGenerateSpec::Shape::cylinder;
     MapReader c = g.section("cylinder", false);
     spec.cylinder = read_cylinder(c);
@@ -86,11 +102,29 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
         MapReader::silenced(g.context(), g.key_path("cylinder"), g.key_path("cylinder"), g.where());
     read_cylinder(unused);
   }
+  if (has_blocks && shapes == 1) {
+    spec.shape = MeshGenerateSpec::Shape::blocks;
+    auto blocks = g.section_list("blocks", 1);
+    for (size_t k = 0; k < blocks.size(); ++k) spec.blocks.push_back(read_block(blocks[k], k));
+  } else {
+    g.declare("blocks");
+    MapReader unused =
+        MapReader::silenced(g.context(), g.key_path("blocks"), g.key_path("blocks"), g.where());
+    read_block(unused, 0);
+  }
 }
 
 MeshGenerateSpec read_generate(MapReader& g) {
   MeshGenerateSpec spec;
   read_shape(g, spec);
+  if (spec.shape == MeshGenerateSpec::Shape::blocks) {
+    // A lattice: its element size is the cells', so the mesher's size keys do not apply.
+    for (auto key : {"origin", "size_min", "size_max", "grading", "seed"})
+      g.forbid(key, "for blocks (each block gives its origin, size and cells)");
+    g.forbid("notches", "for blocks (notches cut a generated box)");
+    g.finish();
+    return spec;
+  }
   spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
   spec.size_min = g.real("size_min", positive("m"), std::nullopt);
   spec.size_max = g.real("size_max", positive("m"), std::nullopt);

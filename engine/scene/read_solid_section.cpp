@@ -105,6 +105,13 @@ SolidSpec read_solid_section(MapReader& sec) {
   auto materials = sec.section_list("materials", 1);
   for (auto& m : materials) solid.materials.push_back(read_material(m));
   check_unique_names(sec, materials, solid.materials);
+  for (auto& v : sec.section_list("initial_velocity", 0)) {
+    InitialVelocitySpec iv;
+    iv.regions = v.string_list("regions", {"all"});
+    iv.velocity = v.vec3("velocity", any_real("m/s"), std::nullopt);
+    v.finish();
+    solid.initial_velocity.push_back(iv);
+  }
   auto boundaries = sec.section_list("boundaries", 0);
   for (auto& b : boundaries) solid.boundaries.push_back(read_boundary(b));
   if (sec.has("fracture")) {
@@ -112,6 +119,15 @@ SolidSpec read_solid_section(MapReader& sec) {
     solid.fracture = read_fracture_section(f);
   } else {
     sec.declare("fracture");
+  }
+  if (sec.has("contact")) {
+    MapReader c = sec.section("contact", false);
+    solid.contact = read_contact_section(c);
+  } else {
+    sec.declare("contact");
+    MapReader unused =
+        MapReader::silenced(sec.context(), sec.key_path("contact"), sec.key_path("contact"), sec.where());
+    read_contact_section(unused);
   }
   if (sec.has("initial_stress")) {
     MapReader s = sec.section("initial_stress", false);

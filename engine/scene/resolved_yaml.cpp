@@ -104,6 +104,18 @@ void emit_mesh(Lines& o, const MeshSpec& m) {
   if (!m.generate) return;
   const MeshGenerateSpec& g = *m.generate;
   o.line(1, "generate");
+  if (g.shape == MeshGenerateSpec::Shape::blocks) {
+    o.line(2, "blocks");
+    for (const auto& b : g.blocks) {
+      o.item(3, "name", quoted(b.name));
+      o.line(4, "origin", vec3(b.origin));
+      o.line(4, "size", vec3(b.size));
+      o.line(4, "cells",
+             "[" + std::to_string(b.cells[0]) + ", " + std::to_string(b.cells[1]) + ", " +
+                 std::to_string(b.cells[2]) + "]");
+    }
+    return;  // a lattice: the mesher's keys do not apply (the reader forbids them)
+  }
   const bool cylinder = g.shape == MeshGenerateSpec::Shape::cylinder;
   if (cylinder) {
     o.line(2, "cylinder");
@@ -153,6 +165,21 @@ void emit_fracture(Lines& o, const FractureSpec& f) {
   if (f.box_max) o.line(2, "box_max", vec3(*f.box_max));
   o.line(2, "integration_points", std::to_string(f.integration_points));
   o.line(2, "softening", f.y_compatible ? "y_compatible" : "energy_exact");
+  o.line(2, "initial_cracks", f.initial_cracks.empty() ? "[]" : "");
+  for (const auto& c : f.initial_cracks) {
+    o.item(3, "point", vec3(c.point));
+    o.line(4, "normal", vec3(c.normal));
+    o.line(4, "radius", c.radius ? yaml_real(*c.radius) : "null");
+  }
+}
+
+void emit_contact(Lines& o, const ContactSpec& c) {
+  o.line(1, "contact");
+  o.line(2, "penalty", c.penalty ? yaml_real(*c.penalty) : "null");
+  o.line(2, "friction", yaml_real(c.friction));
+  o.line(2, "tangential_penalty", yaml_real(c.tangential_penalty));
+  o.line(2, "damping", yaml_real(c.damping));
+  o.line(2, "buffer", c.buffer ? yaml_real(*c.buffer) : "null");
 }
 
 void emit_initial_stress(Lines& o, const InitialStressSpec& s) {
@@ -188,9 +215,17 @@ void emit_solid(Lines& o, const SolidSpec& s) {
   o.line(1, "gravity", vec3(s.gravity));
   o.line(1, "materials");
   for (const auto& m : s.materials) emit_material(o, m);
+  o.line(1, "initial_velocity", s.initial_velocity.empty() ? "[]" : "");
+  for (const auto& v : s.initial_velocity) {
+    std::string regions;
+    for (const auto& r : v.regions) regions += (regions.empty() ? "" : ", ") + quoted(r);
+    o.item(2, "regions", "[" + regions + "]");
+    o.line(3, "velocity", vec3(v.velocity));
+  }
   o.line(1, "boundaries", s.boundaries.empty() ? "[]" : "");
   for (const auto& b : s.boundaries) emit_boundary(o, b);
   if (s.fracture) emit_fracture(o, *s.fracture);
+  if (s.contact) emit_contact(o, *s.contact);
   if (s.initial_stress) emit_initial_stress(o, *s.initial_stress);
 }
 

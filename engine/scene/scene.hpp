@@ -32,11 +32,22 @@ struct CylinderSpec {
   double load_arc = 10.0;  // full angle of each loading arc [deg], 0 < load_arc < 90
 };
 
+// One block of a `blocks` mesh: a box cut into cells[0] x cells[1] x cells[2] cubes of 6 Kuhn tets each
+// (engine/mesh/lattice_box.hpp). Blocks share no nodes, so each is a separate body (contact between
+// them needs solid.contact); block k is mesh region `name`, its faces the surfaces `name`_xmin ... _zmax.
+struct BlockSpec {
+  std::string name;
+  std::array<double, 3> origin{};  // lower corner [m]
+  std::array<double, 3> size{};    // edge lengths [m]
+  std::array<int, 3> cells{1, 1, 1};
+};
+
 struct MeshGenerateSpec {
-  enum class Shape { box, cylinder };
+  enum class Shape { box, cylinder, blocks };
   Shape shape = Shape::box;
-  std::array<double, 3> size{};  // box: edge lengths [m]
-  CylinderSpec cylinder;         // cylinder: its dimensions
+  std::vector<BlockSpec> blocks;  // blocks only
+  std::array<double, 3> size{};   // box: edge lengths [m]
+  CylinderSpec cylinder;          // cylinder: its dimensions
   // box: lower corner; cylinder: (x, y) of the axis and z of the lower flat face [m]
   std::array<double, 3> origin{};
   std::vector<NotchSpec> notches;  // box only
@@ -74,8 +85,19 @@ struct MaterialSpec {
 };
 
 // Where joints exist: tets of the listed regions whose centroid lies in the box (if one is given).
+// A crack that exists at t = 0: the joints whose three corners lie on the plane through `point` with
+// normal `normal` (within 1e-6 of the joint's longest edge), and within `radius` of `point` if one is
+// given, start broken (no cohesion, no fracture energy; their faces interact only by contact). The mesh
+// must have faces on the plane (a lattice mesh, or a file meshed with the crack as an internal surface).
+struct CrackPlaneSpec {
+  std::array<double, 3> point{};
+  std::array<double, 3> normal{0, 0, 1};  // need not be unit length
+  std::optional<double> radius;           // [m]; absent: the whole plane
+};
+
 struct FractureSpec {
   std::vector<std::string> regions{"all"};
+  std::vector<CrackPlaneSpec> initial_cracks;
   std::optional<std::array<double, 3>> box_min, box_max;  // both or neither [m]
   int integration_points = 3;                             // 3 or 7 per joint
   bool y_compatible = false;  // softening length 3 G / f (Y code) instead of the energy-exact one
@@ -119,8 +141,27 @@ struct SolidBoundarySpec {
   TimeFunction function;              // scales `direction` (velocity, traction) or is the pressure [Pa]
 };
 
+// Contact between free faces (femdem.md 1c; systems/contact_system.hpp): Munjiza's potential with
+// penalty p, Coulomb friction with a tangential penalty, optional normal damping.
+struct ContactSpec {
+  std::optional<double> penalty;    // p [Pa]; absent: 10 x the largest Young's modulus
+  double friction = 0.0;            // mu [-]
+  double tangential_penalty = 0.1;  // k_t / (p L): Y's default of 0.1 x the normal stiffness
+  double damping = 0.0;             // xi: fraction of critical of a pair's normal oscillation [-]
+  std::optional<double> buffer;     // b [m]; absent: 0.1 x the mean tet edge
+};
+
+// A uniform velocity at t = 0 for every node of the tets in `regions` (later entries win where regions
+// overlap): a block thrown at another, a projectile.
+struct InitialVelocitySpec {
+  std::vector<std::string> regions{"all"};
+  std::array<double, 3> velocity{};  // [m/s]
+};
+
 struct SolidSpec {
   std::vector<MaterialSpec> materials;
+  std::vector<InitialVelocitySpec> initial_velocity;
+  std::optional<ContactSpec> contact;  // absent: no contact system
   std::vector<SolidBoundarySpec> boundaries;
   std::array<double, 3> gravity{};                  // [m/s^2]
   std::optional<FractureSpec> fracture;             // absent: continuous mesh, no joints

@@ -18,6 +18,7 @@ SolidSpec read_solid_section(MapReader& sec);
 FractureMaterialSpec read_fracture_material(MapReader& sec, double young);
 FractureSpec read_fracture_section(MapReader& sec);
 InitialStressSpec read_initial_stress_section(MapReader& sec);
+ContactSpec read_contact_section(MapReader& sec);
 OutputSpec read_output_section(MapReader& sec);
 CheckpointSpec read_checkpoint_section(MapReader& sec);
 ReferenceMetricSpec read_reference_metric(MapReader& sec);

@@ -255,7 +255,7 @@ TEST(SceneDefaults, CylinderIsReadAndChecked) {
   EXPECT_EQ(notch.line, 0);  // given by --set
   const SceneDiagnostic neither = read_one_error(head + "mesh: {generate: {size_min: 1, size_max: 1}}\n");
   EXPECT_EQ(neither.key_path, "mesh.generate");
-  EXPECT_EQ(neither.found, "neither");
+  EXPECT_EQ(neither.found, "none");
 }
 
 // --- Overrides -----------------------------------------------------------------------------------

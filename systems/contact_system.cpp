@@ -1,0 +1,411 @@
+#include "systems/contact_system.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "engine/mesh/tet_faces.hpp"
+#include "engine/schedule/parallel.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+namespace {
+
+constexpr size_t kPairGrain = 256;
+constexpr size_t kTetGrain = 2048;
+
+using Corners = double[4][3];
+
+void tet_corners(std::span<const double> x, std::span<const int32_t> tet_nodes, size_t t, Corners& c) {
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) c[k][i] = x[3 * tet_nodes[4 * t + k] + i];
+}
+
+double tet_volume(const Corners& c) {
+  const double u[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
+  const double v[3] = {c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]};
+  const double w[3] = {c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2]};
+  return std::abs(u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                  u[2] * (v[0] * w[1] - v[1] * w[0])) /
+         6.0;
+}
+
+double triangle_area(const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+// Union-find root with path halving.
+int32_t find_root(std::vector<int32_t>& parent, int32_t a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+}  // namespace
+
+ContactSystem::ContactSystem(Store& store, const ContactSpec& spec, size_t input_vertex_count,
+                             std::span<const double> tet_density)
+    : store_(store), input_vertex_count_(input_vertex_count) {
+  Table& nodes = store_.table(solid::node_table);
+  nodes.add<double>("contact_force", 3);
+  nodes.add<double>("x_detect", 3);
+  Table& pairs = store_.add_table(solid::contact_pair_table);
+  pairs.add<int32_t>("tets", 2);
+  pairs.add<double>("history", 3);
+  pairs.add<double>("force", 24);
+  for (const char* c :
+       {"normal_force", "energy", "spring_energy", "friction_dissipation", "damping_dissipation"})
+    pairs.add<double>(c);
+  Table& energy = store_.table(solid::energy_table);
+  for (const char* c : {"contact_work", "friction", "contact_damping"}) energy.add<double>(c);
+  Table& state = store_.add_table(solid::contact_state_table);
+  state.add<int64_t>("detections");
+  state.resize(1);
+  is_candidate_.assign(store_.table(solid::tet_table).size(), 0);
+  derive_constants(spec, tet_density);
+  find_bodies_and_boundary_tets();
+  estimate_stable_step();
+  spdlog::info(
+      "contact: penalty {:.4g} Pa, friction {:.4g}, k_t {:.4g} N/m, damping {:.4g} N s/m, buffer {:.4g} m, "
+      "stable step {:.4g} s; {} bodies ({} boundary tets take part from the start)",
+      law_.penalty, law_.friction, law_.tangential_stiffness, law_.normal_damping, buffer_, stable_step_,
+      bodies_, bodies_ > 1 ? boundary_tets_.size() : 0);
+}
+
+ContactSystem::~ContactSystem() = default;
+
+void ContactSystem::derive_constants(const ContactSpec& spec, std::span<const double> tet_density) {
+  const Table& tets = store_.table(solid::tet_table);
+  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  const auto conn = tets.span<const int32_t>("nodes");
+  double sum_v = 0.0, sum_a = 0.0, sum_l = 0.0, sum_m = 0.0;
+  for (size_t t = 0; t < tets.size(); ++t) {
+    Corners c;
+    tet_corners(x0, conn, t, c);
+    const double v = tet_volume(c);
+    double a_sum = 0.0;
+    for (const auto& f : kTetFaceCorners) a_sum += triangle_area(c[f[0]], c[f[1]], c[f[2]]);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        sum_l +=
+            std::sqrt((c[i][0] - c[j][0]) * (c[i][0] - c[j][0]) + (c[i][1] - c[j][1]) * (c[i][1] - c[j][1]) +
+                      (c[i][2] - c[j][2]) * (c[i][2] - c[j][2]));
+    sum_v += v;
+    sum_a += a_sum / 4.0;
+    sum_m += tet_density[t] * v;
+  }
+  const double n = static_cast<double>(std::max<size_t>(tets.size(), 1));
+  const double v = sum_v / n, a = sum_a / n, l = sum_l / (6.0 * n), m = sum_m / n;
+  const double k_n = 8.0 * (*spec.penalty) * a * a / (3.0 * v);
+  law_.penalty = *spec.penalty;
+  law_.friction = spec.friction;
+  law_.tangential_stiffness = spec.friction > 0 ? spec.tangential_penalty * law_.penalty * l : 0.0;
+  law_.normal_damping = 2.0 * spec.damping * std::sqrt(k_n * 0.5 * m);
+  buffer_ = spec.buffer ? *spec.buffer : 0.1 * l;
+}
+
+// Bodies: components of the input vertices through the tets. Outer boundary faces: faces (on input
+// vertices) that only one tet has. Only a mesh of several bodies needs the faces.
+void ContactSystem::find_bodies_and_boundary_tets() {
+  const auto vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const size_t tets = conn.size() / 4;
+  std::vector<int32_t> parent(input_vertex_count_);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<uint8_t> used(input_vertex_count_, 0);
+  for (size_t t = 0; t < tets; ++t) {
+    const int32_t r0 = find_root(parent, vertex[conn[4 * t]]);
+    used[vertex[conn[4 * t]]] = 1;
+    for (int k = 1; k < 4; ++k) {
+      const int32_t v = vertex[conn[4 * t + k]];
+      used[v] = 1;
+      const int32_t r = find_root(parent, v);
+      if (r != r0) parent[r] = find_root(parent, r0);
+    }
+  }
+  bodies_ = 0;
+  for (size_t v = 0; v < input_vertex_count_; ++v)
+    bodies_ += used[v] && find_root(parent, static_cast<int32_t>(v)) == static_cast<int32_t>(v);
+  // Tets outside the fracture zone (no joint) of one body share nodes: that continuum cannot touch itself
+  // at the strains a tet survives, so its pairs are not contact pairs (saves most of a block's pairs).
+  tet_body_.resize(tets);
+  for (size_t t = 0; t < tets; ++t) tet_body_[t] = find_root(parent, vertex[conn[4 * t]]);
+  in_zone_.assign(tets, 0);
+  if (store_.has(solid::joint_table))
+    for (int32_t t : store_.table(solid::joint_table).span<const int32_t>("tets")) in_zone_[t] = 1;
+  if (bodies_ < 2) return;
+  std::unordered_map<FaceKey, int32_t, FaceKeyHash> count;
+  count.reserve(2 * tets);
+  auto key = [&](size_t t, int f) {
+    return face_key({vertex[conn[4 * t + kTetFaceCorners[f][0]]], vertex[conn[4 * t + kTetFaceCorners[f][1]]],
+                     vertex[conn[4 * t + kTetFaceCorners[f][2]]]});
+  };
+  for (size_t t = 0; t < tets; ++t)
+    for (int f = 0; f < 4; ++f) ++count[key(t, f)];
+  for (size_t t = 0; t < tets; ++t) {
+    bool boundary = false;
+    for (int f = 0; f < 4; ++f)
+      if (count[key(t, f)] == 1) {
+        boundary = true;
+        boundary_faces_.push_back({static_cast<int32_t>(t), f});
+      }
+    if (boundary) boundary_tets_.push_back(static_cast<int32_t>(t));
+  }
+}
+
+// Gershgorin on the contact springs: a face that may touch (a joint face, which may break, or an outer
+// boundary face of a mesh of several bodies) pressed face to face has stiffness k_f = 8 p A^2 / (3 V)
+// (header), a third of it on each corner. A node's springs add up to K; with the other side moving too,
+// omega^2 <= 2 K / m, and the central difference is stable for dt <= 2 / omega = sqrt(2 m / K).
+void ContactSystem::estimate_stable_step() {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto x0 = nodes.span<const double>("x0");
+  const auto mass = nodes.span<const double>("mass");
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  std::vector<double> stiffness(nodes.size(), 0.0);
+  auto add_face = [&](int32_t t, const int32_t corner[3]) {
+    Corners c;
+    tet_corners(x0, conn, static_cast<size_t>(t), c);
+    const double v = tet_volume(c);
+    if (!(v > 0)) return;
+    const double a = triangle_area(c[corner[0]], c[corner[1]], c[corner[2]]);
+    const double k = 8.0 * law_.penalty * a * a / (3.0 * v);
+    for (int i = 0; i < 3; ++i) stiffness[conn[4 * t + corner[i]]] += k / 3.0;
+  };
+  for (const auto& [t, f] : boundary_faces_) add_face(t, kTetFaceCorners[f]);
+  if (store_.has(solid::joint_table)) {
+    const Table& joints = store_.table(solid::joint_table);
+    const auto jn = joints.span<const int32_t>("nodes");
+    const auto jt = joints.span<const int32_t>("tets");
+    for (size_t j = 0; j < joints.size(); ++j)
+      for (int s = 0; s < 2; ++s) {
+        const int32_t t = jt[2 * j + s];
+        int32_t corner[3] = {0, 1, 2};
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 4; ++k)
+            if (conn[4 * t + k] == jn[6 * j + 3 * s + i]) corner[i] = k;
+        add_face(t, corner);
+      }
+  }
+  stable_step_ = INFINITY;
+  for (size_t n = 0; n < nodes.size(); ++n)
+    if (stiffness[n] > 0 && mass[n] > 0)
+      stable_step_ = std::min(stable_step_, std::sqrt(2.0 * mass[n] / stiffness[n]));
+}
+
+Access ContactSystem::access() const {
+  using solid::col;
+  const char* N = solid::node_table;
+  const char* P = solid::contact_pair_table;
+  std::vector<std::string> reads{col(N, "x"),
+                                 col(N, "v"),
+                                 col(N, "vertex"),
+                                 col(solid::tet_table, "nodes"),
+                                 col(solid::event_table, "joint"),
+                                 col(solid::event_table, "time")};
+  if (store_.has(solid::joint_table)) {
+    reads.push_back(col(solid::joint_table, "nodes"));
+    reads.push_back(col(solid::joint_table, "tets"));
+  }
+  std::vector<std::string> writes{col(N, "contact_force"),
+                                  col(N, "x_detect"),
+                                  col(P, "tets"),
+                                  col(P, "history"),
+                                  col(P, "force"),
+                                  col(P, "normal_force"),
+                                  col(P, "energy"),
+                                  col(P, "spring_energy"),
+                                  col(P, "friction_dissipation"),
+                                  col(P, "damping_dissipation"),
+                                  col(solid::energy_table, "friction"),
+                                  col(solid::energy_table, "contact_damping"),
+                                  col(solid::contact_state_table, "detections")};
+  // Resizes only its own pair table, which no other system touches: declared as writes, not as a topology
+  // change (that would serialise the whole step).
+  return {reads, writes};
+}
+
+void ContactSystem::run(const StepContext& ctx) {
+  const size_t events = store_.table(solid::event_table).size();
+  if (events > events_seen_ || (!awake_ && bodies_ > 1)) must_detect_ = add_new_candidates() || must_detect_;
+  if (candidates_.empty()) return;  // one intact body: nothing can touch
+  if (must_detect_ || detection_needed()) detect();
+  compute_forces(ctx);
+}
+
+// The first wake builds the grouping of node copies (who is still tied to whom); every break since then
+// regroups the joint's three vertices and makes its two tets candidates.
+bool ContactSystem::add_new_candidates() {
+  const size_t before = candidates_.size(), events_before = events_seen_;
+  if (!awake_) {
+    awake_ = true;
+    SolidTopology topology;
+    topology.input_vertex_count = input_vertex_count_;
+    topology.node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+    topology.tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+    if (store_.has(solid::joint_table)) {
+      topology.joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+      topology.joint_tets = store_.table(solid::joint_table).span<const int32_t>("tets");
+    }
+    grouping_ = std::make_unique<MeshConversion>(topology);
+    if (bodies_ > 1)
+      for (int32_t t : boundary_tets_) {
+        is_candidate_[t] = 1;
+        candidates_.push_back(t);
+      }
+  }
+  const Table& events = store_.table(solid::event_table);
+  const auto joint = events.span<const int32_t>("joint");
+  const auto time = events.span<const double>("time");
+  const auto joint_tets = store_.has(solid::joint_table)
+                              ? store_.table(solid::joint_table).span<const int32_t>("tets")
+                              : std::span<const int32_t>{};
+  for (; events_seen_ < events.size(); ++events_seen_) {
+    const int32_t j = joint[events_seen_];
+    grouping_->break_joint(j, time[events_seen_]);
+    for (int s = 0; s < 2; ++s) {
+      const int32_t t = joint_tets[2 * j + s];
+      if (!is_candidate_[t]) {
+        is_candidate_[t] = 1;
+        candidates_.push_back(t);
+      }
+    }
+  }
+  // New candidates need boxes; a new break also changes who is tied to whom (the exclusions).
+  return candidates_.size() != before || events_seen_ != events_before;
+}
+
+bool ContactSystem::detection_needed() {
+  const auto x = store_.table(solid::node_table).span<const double>("x");
+  const auto x_ref = store_.table(solid::node_table).span<const double>("x_detect");
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const size_t n = candidates_.size();
+  const size_t blocks = (n + kTetGrain - 1) / kTetGrain;
+  auto& partial = partial_max_;
+  if (partial.size() < blocks) partial.resize(blocks);
+  parallel_for(n, kTetGrain, [&](size_t begin, size_t end) {
+    double d2 = 0.0;
+    for (size_t k = begin; k < end; ++k)
+      for (int c = 0; c < 4; ++c) {
+        const size_t i = 3 * static_cast<size_t>(conn[4 * candidates_[k] + c]);
+        const double dx = x[i] - x_ref[i], dy = x[i + 1] - x_ref[i + 1], dz = x[i + 2] - x_ref[i + 2];
+        d2 = std::max(d2, dx * dx + dy * dy + dz * dz);
+      }
+    partial[begin / kTetGrain] = d2;
+  });
+  double d2 = 0.0;
+  for (size_t b = 0; b < blocks; ++b) d2 = std::max(d2, partial[b]);
+  return kernels::contact_redetect_needed(std::sqrt(d2), buffer_);
+}
+
+void ContactSystem::detect() {
+  Table& nodes = store_.table(solid::node_table);
+  const auto x = nodes.span<const double>("x");
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const size_t n = candidates_.size();
+  if (lo_.size() < 3 * n) lo_.resize(3 * n), hi_.resize(3 * n);
+  parallel_for(n, kTetGrain, [&](size_t begin, size_t end) {
+    kernels::tet_bounding_boxes(x, conn, candidates_, lo_, hi_, begin, end);
+  });
+  kernels::BroadPhaseArgs args{candidates_, std::span<const double>(lo_).first(3 * n),
+                               std::span<const double>(hi_).first(3 * n), buffer_};
+  kernels::contact_broad_phase(args, broad_);
+  // Pairs still tied at some vertex, or both in one body's continuous part, are the continuum's (header).
+  const auto group = grouping_->node_vertex();
+  auto tied = [&](const kernels::ContactPair& p) {
+    if (tet_body_[p.a] == tet_body_[p.b] && !in_zone_[p.a] && !in_zone_[p.b]) return true;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (group[conn[4 * p.a + i]] == group[conn[4 * p.b + j]]) return true;
+    return false;
+  };
+  auto& found = broad_.pairs;
+  found.erase(std::remove_if(found.begin(), found.end(), tied), found.end());
+
+  Table& table = store_.table(solid::contact_pair_table);
+  const size_t old_count = table.size();
+  const auto* old = reinterpret_cast<const kernels::ContactPair*>(table.span<int32_t>("tets").data());
+  old_pairs_.assign(old, old + old_count);
+  const auto old_history = table.span<double>("history");
+  old_history_.assign(old_history.begin(), old_history.end());
+  // Nodes the old list gathered into are cleared here; compute_forces clears those of the new list.
+  auto contact_force = nodes.span<double>("contact_force");
+  for (const auto& p : old_pairs_)
+    for (int32_t t : {p.a, p.b})
+      for (int c = 0; c < 4; ++c)
+        for (int i = 0; i < 3; ++i) contact_force[3 * conn[4 * t + c] + i] = 0.0;
+  table.resize(found.size());
+  auto* pairs = reinterpret_cast<kernels::ContactPair*>(table.span<int32_t>("tets").data());
+  std::copy(found.begin(), found.end(), pairs);
+  kernels::remap_pair_history(old_pairs_, old_history_, {pairs, found.size()}, table.span<double>("history"));
+  const auto all_x = nodes.span<const double>("x");
+  auto x_detect = nodes.span<double>("x_detect");
+  std::copy(all_x.begin(), all_x.end(), x_detect.begin());
+  ++store_.table(solid::contact_state_table).span<int64_t>("detections")[0];
+  must_detect_ = false;
+}
+
+void ContactSystem::compute_forces(const StepContext& ctx) {
+  Table& nodes = store_.table(solid::node_table);
+  Table& table = store_.table(solid::contact_pair_table);
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const std::span<const kernels::ContactPair> pairs(
+      reinterpret_cast<const kernels::ContactPair*>(table.span<int32_t>("tets").data()), table.size());
+  kernels::ContactArgs args;
+  args.x = nodes.span<const double>("x");
+  args.v = nodes.span<const double>("v");
+  args.tet_nodes = conn;
+  args.pairs = pairs;
+  args.law = law_;
+  args.dt = ctx.dt;
+  args.history = table.span<double>("history");
+  args.pair_force = table.span<double>("force");
+  args.normal_force = table.span<double>("normal_force");
+  args.friction_dissipation = table.span<double>("friction_dissipation");
+  args.damping_dissipation = table.span<double>("damping_dissipation");
+  args.energy = table.span<double>("energy");
+  args.friction_energy = table.span<double>("spring_energy");
+  const size_t blocks = (pairs.size() + kPairGrain - 1) / kPairGrain;
+  if (partial_status_.size() < blocks) partial_status_.resize(blocks);
+  parallel_for(pairs.size(), kPairGrain, [&](size_t begin, size_t end) {
+    partial_status_[begin / kPairGrain] = kernels::contact_forces(args, begin, end);
+  });
+  status_ = {};
+  for (size_t b = 0; b < blocks; ++b) status_ += partial_status_[b];
+  // Clear the nodes this list gathers into, then gather in pair order (deterministic).
+  auto contact_force = nodes.span<double>("contact_force");
+  for (const auto& p : pairs)
+    for (int32_t t : {p.a, p.b})
+      for (int c = 0; c < 4; ++c)
+        for (int i = 0; i < 3; ++i) contact_force[3 * conn[4 * t + c] + i] = 0.0;
+  kernels::contact_gather(pairs, conn, args.pair_force, contact_force);
+  double friction = 0.0, damping = 0.0;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    friction += args.friction_dissipation[k];
+    damping += args.damping_dissipation[k];
+  }
+  Table& energy = store_.table(solid::energy_table);
+  energy.span<double>("friction")[0] += friction;
+  energy.span<double>("contact_damping")[0] += damping;
+}
+
+ContactTotals ContactSystem::totals() const {
+  const Table& table = store_.table(solid::contact_pair_table);
+  ContactTotals t;
+  t.candidates = candidates_.size();
+  t.pairs = table.size();
+  t.touching = status_.touching;
+  t.sliding = status_.sliding;
+  t.detections = store_.table(solid::contact_state_table).span<const int64_t>("detections")[0];
+  for (double e : table.span<const double>("energy")) t.overlap_energy += e;
+  for (double e : table.span<const double>("spring_energy")) t.spring_energy += e;
+  return t;
+}
+
+}  // namespace rift

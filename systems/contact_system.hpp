@@ -1,0 +1,107 @@
+#pragma once
+// Contact between free faces of the solid (femdem.md 1c): broad phase by binning, Munjiza's potential
+// between tet pairs, Coulomb friction with a tangential penalty, optional normal damping. The kernels are
+// kernels/contact_broad_phase.hpp and kernels/contact_potential.hpp; this system decides who takes part,
+// when to detect again, and where the forces go.
+//
+// Who takes part (the candidates): the two tets of every broken joint, from the step it broke (Y's rule:
+// no step passes between cohesion and contact), and, in a mesh of several bodies, every tet with a face on
+// the outer boundary. In a scene of one intact body there are no candidates and the system does nothing
+// but look at the fracture log's length: it wakes with the first break.
+//
+// Which pairs are excluded: two tets that are still tied at a point, i.e. some corner of one and some
+// corner of the other are copies of one vertex of the continuous mesh (engine/mesh/mesh_conversion.hpp:
+// copies tied through intact joints, or a node shared outside the fracture zone). The continuum carries
+// their interaction; contact across a crack starts where the crack has separated the copies, so tets
+// around a crack front (still tied around it) never push each other apart. Likewise two tets of one body
+// outside the fracture zone (a node-sharing continuum does not touch itself at strains a tet survives).
+//
+// When to detect: at the first step with candidates, whenever candidates join, and when some candidate
+// node has moved by more than buffer / 2 since the last detection (the criterion in
+// contact_broad_phase.hpp): the pair list is then exact in between. Each detection carries the friction
+// history of the pairs that stay over to the new list.
+//
+// Forces: each pair writes its own 24 corner forces (parallel over pairs, any split), then one sequential
+// gather adds them to solid_node.contact_force in pair order: bitwise the same on any thread count. The
+// node pass adds contact_force to the internal forces.
+//
+// Per-pair constants from the mesh's mean tet (volume V, face area A, edge L, density rho): normal stiffness
+// of a face-to-face contact k_n = 8 p A^2 / (3 V) (both ways: p A delta / (H / 4) each, H = 3 V / A),
+// tangential k_t = tangential_penalty x p L, damping eta_n = 2 xi sqrt(k_n m / 2) (critical for two tets of
+// mass m = rho V on the spring k_n). The stable step estimate (stable_step below) uses each face's own V, A
+// and the node masses.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/mesh/mesh_conversion.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/schedule/system.hpp"
+#include "kernels/contact_broad_phase.hpp"
+#include "kernels/contact_potential.hpp"
+
+namespace rift {
+
+struct ContactTotals {
+  size_t candidates = 0, pairs = 0, touching = 0, sliding = 0;
+  int64_t detections = 0;
+  double overlap_energy = 0.0;  // sum of the pairs' potential energy E [J]
+  double spring_energy = 0.0;   // elastic energy in the friction springs [J]
+};
+
+class ContactSystem : public System {
+ public:
+  // Needs the solid's tables; adds solid_node.contact_force and x_detect, solid_contact_pair,
+  // solid_contact_state and the contact columns of solid_energy.
+  // spec.penalty must be set (the solid resolves its default); tet_density: 1 per tet [kg/m^3].
+  ContactSystem(Store& store, const ContactSpec& spec, size_t input_vertex_count,
+                std::span<const double> tet_density);
+  ~ContactSystem() override;
+  std::string name() const override { return "contact"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+
+  // Largest step the contact penalty is stable with (femdem.md 1d's estimate for a joint, here for two
+  // tets pressed face to face), minimum over tets [s].
+  double stable_step() const { return stable_step_; }
+  const kernels::ContactLaw& law() const { return law_; }
+  double buffer() const { return buffer_; }
+  size_t bodies() const { return bodies_; }
+  ContactTotals totals() const;
+
+ private:
+  void wake();
+  bool add_new_candidates();
+  bool detection_needed();
+  void detect();
+  void compute_forces(const StepContext& ctx);
+  void derive_constants(const ContactSpec& spec, std::span<const double> tet_density);
+  void find_bodies_and_boundary_tets();
+  void estimate_stable_step();
+
+  Store& store_;
+  size_t input_vertex_count_;
+  kernels::ContactLaw law_;
+  double buffer_ = 0.0, stable_step_ = 0.0;
+  size_t bodies_ = 0;
+  std::vector<int32_t> boundary_tets_;  // tets with a face on the outer boundary (candidates if bodies_ > 1)
+  std::vector<std::pair<int32_t, int>> boundary_faces_;
+  std::vector<int32_t> tet_body_;  // per tet: its body (a root input vertex)
+  std::vector<uint8_t> in_zone_;   // per tet: has a joint  // (tet, face) on the outer boundary, bodies_ > 1
+  // Built at the first wake (a scene that never breaks never pays for it).
+  std::unique_ptr<MeshConversion> grouping_;
+  size_t events_seen_ = 0;
+  bool awake_ = false, must_detect_ = false;
+  std::vector<uint8_t> is_candidate_;  // per tet
+  std::vector<int32_t> candidates_;    // tet ids, in the order they joined (the broad phase ignores order)
+  // Scratch reused between steps and detections.
+  std::vector<double> lo_, hi_;
+  kernels::BroadPhaseWorkspace broad_;
+  std::vector<kernels::ContactPair> old_pairs_;
+  std::vector<double> old_history_, partial_max_;
+  std::vector<kernels::ContactStatus> partial_status_;
+  kernels::ContactStatus status_;
+};
+
+}  // namespace rift

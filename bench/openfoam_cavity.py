@@ -239,19 +239,22 @@ def main():
     finally:
         if not args.work:
             shutil.rmtree(work, ignore_errors=True)
+    def ratio(key):  # None when icoFoam's figure is below its clock's resolution (tiny runs)
+        return rift[key] / of[key] if of[key] > 0 else None
+
     res = {"case": "lid-driven cavity Re = 100", "openfoam": of, "rift": rift,
-           "ratio_rift_over_openfoam": {
-               "cpu_per_step": rift["cpu_ms_per_step"] / of["cpu_ms_per_step"],
-               "wall_per_step": rift["wall_ms_per_step"] / of["wall_ms_per_step"],
-               "wall_to_steady": rift["wall_seconds"] / of["wall_seconds"]}}
+           "ratio_rift_over_openfoam": {"cpu_per_step": ratio("cpu_ms_per_step"),
+                                        "wall_per_step": ratio("wall_ms_per_step"),
+                                        "wall_to_steady": ratio("wall_seconds")}}
     print("| code | grid | unknowns | dt | steps | CPU ms/step | wall ms/step | wall to steady [s] | max |du| | max |dv| |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name, r, grid in (("icoFoam", of, f"{of['cells']}^2 x 1 hex"), ("Rift", rift, f"{rift['cells']}^2 x 1 x 6 tets")):
         print(f"| {name} | {grid} | {r['unknowns']} | {r['dt']:.4g} | {r['steps']} | {r['cpu_ms_per_step']:.3f} | "
               f"{r['wall_ms_per_step']:.3f} | {r['wall_seconds']:.2f} | {r['max_du']:.4f} | {r['max_dv']:.4f} |")
     q = res["ratio_rift_over_openfoam"]
-    print(f"Rift / icoFoam: CPU per step {q['cpu_per_step']:.2f}, wall per step {q['wall_per_step']:.2f}, "
-          f"wall to steady state {q['wall_to_steady']:.2f}; icoFoam centre-line change over the last "
+    fmt = {k: "n/a" if v is None else f"{v:.2f}" for k, v in q.items()}
+    print(f"Rift / icoFoam: CPU per step {fmt['cpu_per_step']}, wall per step {fmt['wall_per_step']}, "
+          f"wall to steady state {fmt['wall_to_steady']}; icoFoam centre-line change over the last "
           f"{of['write_interval']:g} time units {of['centre_line_change_last_interval']:.1e}")
     if args.json:
         os.makedirs(os.path.dirname(os.path.abspath(args.json)), exist_ok=True)

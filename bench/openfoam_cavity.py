@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Lid-driven cavity at Re = 100: Rift against OpenFOAM's icoFoam at equal numbers of unknowns.
 
-    bench/openfoam_cavity.py BENCH_FLUID [--n 32] [--end-time 25] [--co 0.5] [--json FILE] [--work DIR]
+    bench/openfoam_cavity.py BENCH_FLUID [--n 16,32,64] [--end-time 25] [--co 0.5] [--with-3picard]
+                             [--json FILE] [--work DIR]
 
 Runs, in one go:
   * icoFoam (OpenFOAM 1912, Debian package `openfoam`) on the unit square, N x N x 1 cells, nu = 0.01,
@@ -196,11 +197,11 @@ def run_openfoam(n_cells, co, end_time, work, env):
     }
 
 
-def run_rift(bench, n, work):
+def run_rift(bench, n, work, name="BM_FluidCavityRe100"):
     out = os.path.join(work, f"rift{n}.json")
     env = dict(os.environ, RIFT_CAVITY_SIZES=str(n))
     env.pop("RIFT_BENCH_TINY", None)
-    subprocess.run([bench, f"--benchmark_filter=BM_FluidCavityRe100/{n}/", f"--benchmark_out={out}",
+    subprocess.run([bench, f"--benchmark_filter=^{name}/{n}/", f"--benchmark_out={out}",
                     "--benchmark_out_format=json"], check=True, env=env, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL)
     with open(out) as f:
@@ -216,9 +217,11 @@ def run_rift(bench, n, work):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("bench", help="the bench_fluid executable")
-    ap.add_argument("--n", type=int, default=32, help="Rift cells per side (icoFoam: round(sqrt(2) (n + 1)))")
+    ap.add_argument("--n", default="32", help="Rift cells per side, comma-separated (icoFoam: round(sqrt(2) (n + 1)))")
     ap.add_argument("--end-time", type=float, default=25.0)
     ap.add_argument("--co", type=float, default=0.5, help="icoFoam Courant number (dt = co / N)")
+    ap.add_argument("--with-3picard", action="store_true",
+                    help="also run Rift's earlier per-step solve (BM_FluidCavityRe100_3Picard)")
     ap.add_argument("--json", help="write the results here (e.g. bench/results/openfoam_cavity.json)")
     ap.add_argument("--work", help="case directory (default: a temporary one, removed)")
     args = ap.parse_args()
@@ -232,34 +235,50 @@ def main():
         env["WM_PROJECT_DIR"] = "/usr/share/openfoam"
     work = args.work or tempfile.mkdtemp(prefix="openfoam_cavity_")
     os.makedirs(work, exist_ok=True)
-    n_of = round(math.sqrt(2) * (args.n + 1))
+    runs = []
     try:
-        of = run_openfoam(n_of, args.co, args.end_time, work, env)
-        rift = run_rift(args.bench, args.n, work)
+        for n in (int(x) for x in args.n.split(",")):
+            of = run_openfoam(round(math.sqrt(2) * (n + 1)), args.co, args.end_time, work, env)
+            codes = [("icoFoam", of), ("Rift", run_rift(args.bench, n, work))]
+            if args.with_3picard:
+                codes.append(("Rift (3 Picard, full inner solves)",
+                              run_rift(args.bench, n, work, "BM_FluidCavityRe100_3Picard")))
+            runs.append(codes)
     finally:
         if not args.work:
             shutil.rmtree(work, ignore_errors=True)
-    def ratio(key):  # None when icoFoam's figure is below its clock's resolution (tiny runs)
-        return rift[key] / of[key] if of[key] > 0 else None
 
-    res = {"case": "lid-driven cavity Re = 100", "openfoam": of, "rift": rift,
-           "ratio_rift_over_openfoam": {"cpu_per_step": ratio("cpu_ms_per_step"),
-                                        "wall_per_step": ratio("wall_ms_per_step"),
-                                        "wall_to_steady": ratio("wall_seconds")}}
-    print("| code | grid | unknowns | dt | steps | CPU ms/step | wall ms/step | wall to steady [s] | max |du| | max |dv| |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for name, r, grid in (("icoFoam", of, f"{of['cells']}^2 x 1 hex"), ("Rift", rift, f"{rift['cells']}^2 x 1 x 6 tets")):
-        print(f"| {name} | {grid} | {r['unknowns']} | {r['dt']:.4g} | {r['steps']} | {r['cpu_ms_per_step']:.3f} | "
-              f"{r['wall_ms_per_step']:.3f} | {r['wall_seconds']:.2f} | {r['max_du']:.4f} | {r['max_dv']:.4f} |")
-    q = res["ratio_rift_over_openfoam"]
-    fmt = {k: "n/a" if v is None else f"{v:.2f}" for k, v in q.items()}
-    print(f"Rift / icoFoam: CPU per step {fmt['cpu_per_step']}, wall per step {fmt['wall_per_step']}, "
-          f"wall to steady state {fmt['wall_to_steady']}; icoFoam centre-line change over the last "
-          f"{of['write_interval']:g} time units {of['centre_line_change_last_interval']:.1e}")
+    def ratio(r, of, key):  # None when icoFoam's figure is below its clock's resolution (tiny runs)
+        return r[key] / of[key] if of[key] > 0 else None
+
+    def fmt(x):
+        return "n/a" if x is None else f"{x:.2f}"
+
+    print("| code | grid | unknowns | dt | steps | CPU ms/step | wall ms/step | wall to steady [s] | "
+          "CPU/step vs icoFoam | max |du| | max |dv| |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    out = []
+    for codes in runs:
+        of = codes[0][1]
+        entry = {"openfoam": of}
+        for name, r in codes:
+            grid = f"{r['cells']}^2 x 1 hex" if name == "icoFoam" else f"{r['cells']}^2 x 1 x 6 tets"
+            q = ratio(r, of, "cpu_ms_per_step")
+            print(f"| {name} | {grid} | {r['unknowns']} | {r['dt']:.4g} | {r['steps']} | {r['cpu_ms_per_step']:.3f} | "
+                  f"{r['wall_ms_per_step']:.3f} | {r['wall_seconds']:.2f} | {fmt(q)} | {r['max_du']:.4f} | {r['max_dv']:.4f} |")
+            if name != "icoFoam":
+                key = "rift" if name == "Rift" else "rift_3picard"
+                entry[key] = r
+                entry[key + "_over_openfoam"] = {"cpu_per_step": q, "wall_per_step": ratio(r, of, "wall_ms_per_step"),
+                                                 "wall_to_steady": ratio(r, of, "wall_seconds")}
+        out.append(entry)
+        print(f"(icoFoam {of['cells']}^2: centre-line change over the last {of['write_interval']:g} time units "
+              f"{of['centre_line_change_last_interval']:.1e}, {of['p_iterations_per_step']:.1f} p iterations per step)")
     if args.json:
         os.makedirs(os.path.dirname(os.path.abspath(args.json)), exist_ok=True)
         with open(args.json, "w") as f:
-            json.dump(res, f, indent=1)
+            json.dump({"case": "lid-driven cavity Re = 100", "end_time": args.end_time, "co": args.co,
+                       "load_average_1min": os.getloadavg()[0], "runs": out}, f, indent=1)
     return 0
 
 

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Lid-driven cavity at Re = 100: Rift against OpenFOAM's icoFoam at equal numbers of unknowns.
 
-    bench/openfoam_cavity.py BENCH_FLUID [--n 16,32,64] [--end-time 25] [--co 0.5] [--with-3picard]
-                             [--json FILE] [--work DIR]
+    bench/openfoam_cavity.py BENCH_FLUID [--n 16,32,64] [--end-time 25] [--co 0.5]
+                             [--variants 2picard,3picard] [--json FILE] [--work DIR]
 
 Runs, in one go:
   * icoFoam (OpenFOAM 1912, Debian package `openfoam`) on the unit square, N x N x 1 cells, nu = 0.01,
@@ -220,8 +220,9 @@ def main():
     ap.add_argument("--n", default="32", help="Rift cells per side, comma-separated (icoFoam: round(sqrt(2) (n + 1)))")
     ap.add_argument("--end-time", type=float, default=25.0)
     ap.add_argument("--co", type=float, default=0.5, help="icoFoam Courant number (dt = co / N)")
-    ap.add_argument("--with-3picard", action="store_true",
-                    help="also run Rift's earlier per-step solve (BM_FluidCavityRe100_3Picard)")
+    ap.add_argument("--variants", default="",
+                    help="also run these Rift per-step solves, comma-separated: 2picard (2 inexact Picard "
+                         "iterations per step), 3picard (the earlier solve: 3, full inner solves)")
     ap.add_argument("--json", help="write the results here (e.g. bench/results/openfoam_cavity.json)")
     ap.add_argument("--work", help="case directory (default: a temporary one, removed)")
     args = ap.parse_args()
@@ -240,9 +241,9 @@ def main():
         for n in (int(x) for x in args.n.split(",")):
             of = run_openfoam(round(math.sqrt(2) * (n + 1)), args.co, args.end_time, work, env)
             codes = [("icoFoam", of), ("Rift", run_rift(args.bench, n, work))]
-            if args.with_3picard:
-                codes.append(("Rift (3 Picard, full inner solves)",
-                              run_rift(args.bench, n, work, "BM_FluidCavityRe100_3Picard")))
+            for v in filter(None, args.variants.split(",")):
+                label = {"2picard": "Rift, 2 Picard", "3picard": "Rift, 3 Picard, full inner solves"}[v]
+                codes.append((label, run_rift(args.bench, n, work, f"BM_FluidCavityRe100_{v[0]}Picard")))
             runs.append(codes)
     finally:
         if not args.work:
@@ -267,7 +268,7 @@ def main():
             print(f"| {name} | {grid} | {r['unknowns']} | {r['dt']:.4g} | {r['steps']} | {r['cpu_ms_per_step']:.3f} | "
                   f"{r['wall_ms_per_step']:.3f} | {r['wall_seconds']:.2f} | {fmt(q)} | {r['max_du']:.4f} | {r['max_dv']:.4f} |")
             if name != "icoFoam":
-                key = "rift" if name == "Rift" else "rift_3picard"
+                key = {"Rift": "rift", "Rift, 2 Picard": "rift_2picard"}.get(name, "rift_3picard")
                 entry[key] = r
                 entry[key + "_over_openfoam"] = {"cpu_per_step": q, "wall_per_step": ratio(r, of, "wall_ms_per_step"),
                                                  "wall_to_steady": ratio(r, of, "wall_seconds")}

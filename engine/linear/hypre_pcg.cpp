@@ -130,7 +130,7 @@ void HypreAmgPcg::set_matrix(const CsrMatrix& m) {
   s.needs_setup = true;
 }
 
-AmgPcgResult HypreAmgPcg::solve(std::span<const double> b, std::span<double> x) {
+AmgPcgResult HypreAmgPcg::solve(std::span<const double> b, std::span<double> x, double rel_tol) {
   Impl& s = *impl_;
   if (!s.a) throw std::logic_error("HypreAmgPcg::solve before set_matrix");
   check(HYPRE_IJVectorSetValues(s.b, s.n, s.rows.data(), b.data()), "IJVectorSetValues");
@@ -166,6 +166,7 @@ AmgPcgResult HypreAmgPcg::solve(std::span<const double> b, std::span<double> x) 
     check(HYPRE_ParCSRPCGSetup(s.pcg, pa, pb, px), "PCGSetup");
     s.needs_setup = false;
   }
+  HYPRE_PCGSetTol(s.pcg, rel_tol > 0.0 ? rel_tol : settings_.rel_tol);
   const HYPRE_Int err = HYPRE_ParCSRPCGSolve(s.pcg, pa, pb, px);
   // A non-converged solve sets an error flag; it is reported through the result, not thrown.
   if (err != 0) HYPRE_ClearAllErrors();

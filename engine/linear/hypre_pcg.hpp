@@ -51,8 +51,8 @@ class HypreAmgPcg {
   // Copies the values (and, the first time, the pattern) and rebuilds the AMG hierarchy. A later call
   // must have the same pattern.
   void set_matrix(const CsrMatrix& a);
-  // x holds the initial guess on entry.
-  AmgPcgResult solve(std::span<const double> b, std::span<double> x);
+  // x holds the initial guess on entry. rel_tol > 0 replaces settings().rel_tol for this solve.
+  AmgPcgResult solve(std::span<const double> b, std::span<double> x, double rel_tol = 0.0);
   const AmgPcgSettings& settings() const { return settings_; }
 
  private:

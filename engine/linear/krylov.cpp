@@ -21,7 +21,8 @@ void BicgstabJacobi::resize(int32_t n) {
 }
 
 KrylovResult BicgstabJacobi::solve(const CsrMatrix& a, std::span<const double> b, std::span<double> x,
-                                   double rel_tol, double abs_tol, int max_iterations) {
+                                   double rel_tol, double abs_tol, int max_iterations,
+                                   double initial_rel_tol) {
   const size_t n = static_cast<size_t>(a.rows);
   if (r_.size() != n) resize(a.rows);
   for (int32_t i = 0; i < a.rows; ++i) {
@@ -32,9 +33,9 @@ KrylovResult BicgstabJacobi::solve(const CsrMatrix& a, std::span<const double> b
   }
   a.multiply(x, r_);
   for (size_t i = 0; i < n; ++i) r_[i] = b[i] - r_[i];
-  const double target = std::max(rel_tol * std::sqrt(dot(b, b)), abs_tol);
   KrylovResult res;
   res.residual = std::sqrt(dot(r_, r_));
+  const double target = std::max({rel_tol * std::sqrt(dot(b, b)), abs_tol, initial_rel_tol * res.residual});
   if (res.residual <= target) {
     res.converged = true;
     return res;

@@ -120,6 +120,10 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   diag_slot_ = diagonal_slots(momentum_);
   bicgstab_.resize(static_cast<int32_t>(nn));
   for (auto& c : comp_) c = momentum_;
+  for (int d = 0; d < 3; ++d) {
+    comp_all_fixed_[d] = true;
+    for (size_t n = 0; n < nn && comp_all_fixed_[d]; ++n) comp_all_fixed_[d] = vel_fixed_by_[3 * n + d] != -1;
+  }
   const int m = std::max(settings_.schur_restart, 1);
   settings_.schur_restart = m;
   krylov_v_.assign(static_cast<size_t>(m + 1) * nn, 0.0);
@@ -145,6 +149,7 @@ void FluidSolver::set_velocity(const VectorField& u0) {
   apply_velocity_bc(time_);
   for (size_t i = 0; i < u_.size(); ++i)
     if (vel_fixed_by_[i] != -1) u_[i] = vel_value_[i];
+  have_previous_ = false;
 }
 
 void FluidSolver::apply_velocity_bc(double t) {
@@ -227,10 +232,15 @@ void FluidSolver::build_component_matrices() {
   }
 }
 
-int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> u3, bool homogeneous) {
+int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> u3, bool homogeneous,
+                                double forcing) {
   const size_t nn = node_count();
   int its = 0;
   for (int d = 0; d < 3; ++d) {
+    if (comp_all_fixed_[d]) {  // the system is the identity: u = the boundary values
+      for (size_t n = 0; n < nn; ++n) u3[3 * n + d] = homogeneous ? 0.0 : vel_value_[3 * n + d];
+      continue;
+    }
     for (size_t n = 0; n < nn; ++n) {
       const bool fixed = vel_fixed_by_[3 * n + d] != -1;
       const double g = homogeneous ? 0.0 : vel_value_[3 * n + d];
@@ -238,7 +248,7 @@ int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> 
       x_c_[n] = fixed ? g : (homogeneous ? 0.0 : u_[3 * n + d]);
     }
     const KrylovResult kr = bicgstab_.solve(comp_[d], rhs_c_, x_c_, settings_.velocity_rel_tol, 1e-300,
-                                            settings_.velocity_max_iterations);
+                                            settings_.velocity_max_iterations, homogeneous ? 0.0 : forcing);
     its += kr.iterations;
     for (size_t n = 0; n < nn; ++n) u3[3 * n + d] = x_c_[n];
   }
@@ -373,8 +383,17 @@ FluidStepReport FluidSolver::step() {
   const double t_new = time_ + s.dt;
   FluidStepReport rep;
   schur_reference_ = 0.0;
-  u_old_ = u_;
   apply_velocity_bc(t_new);
+  if (s.picard_extrapolate && have_previous_) {
+    // u_old_ still holds u^{n-1}: first iterate 2 u^n - u^{n-1}, boundary values at t^{n+1}.
+    for (size_t i = 0; i < 3 * nn; ++i) {
+      const double un = u_[i];
+      u_[i] = vel_fixed_by_[i] != -1 ? vel_value_[i] : 2.0 * un - u_old_[i];
+      u_old_[i] = un;
+    }
+  } else {
+    u_old_ = u_;
+  }
   if (body_force_fn_) {
     for (size_t n = 0; n < nn; ++n) {
       const Vec3 xn{x_[3 * n], x_[3 * n + 1], x_[3 * n + 2]};
@@ -435,7 +454,7 @@ FluidStepReport FluidSolver::step() {
     ma.rhs = rhs_;
     kernels::fluid_assemble_momentum(ma);
     build_component_matrices();
-    rep.velocity_iterations += solve_momentum(rhs_, u_star_, false);
+    rep.velocity_iterations += solve_momentum(rhs_, u_star_, false, s.velocity_forcing);
     // 2. Pressure: residual -R(u*, p^k) of the stabilised continuity equation.
     std::fill(cont_res_.begin(), cont_res_.end(), 0.0);
     kernels::fluid_pressure_rhs(tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_, cont_res_);
@@ -481,7 +500,8 @@ FluidStepReport FluidSolver::step() {
                                                prhs_});
       for (size_t n = 0; n < nn; ++n)
         if (phi_fixed_[n]) phi_[n] = phi_bc[n];
-      const AmgPcgResult pr = amg_->solve(prhs_, phi_);
+      const AmgPcgResult pr =
+          amg_->solve(prhs_, phi_, std::max(s.pressure_solver.rel_tol, s.projection_forcing));
       rep.pressure_iterations += pr.iterations;
       // 3. Corrections: u = u* - c grad phi (lumped), p += phi - chi R / diag(S_steady).
       std::fill(corr_.begin(), corr_.end(), 0.0);
@@ -507,9 +527,10 @@ FluidStepReport FluidSolver::step() {
     rep.pressure_change = dp / std::max({max_abs(p_), s.rho * umax * umax, 1e-300});
     rep.picard_iterations = k + 1;
     if (s.verbose)
-      std::fprintf(stderr, "  picard %d du %.3e dp %.3e umax %.3e pmax %.3e vits %d pits %d schur %d\n", k,
+      std::fprintf(stderr,
+                   "  picard %d du %.3e dp %.3e umax %.3e pmax %.3e vits %d pits %d schur %d setups %d\n", k,
                    rep.velocity_change, rep.pressure_change, umax, max_abs(p_), rep.velocity_iterations,
-                   rep.pressure_iterations, rep.schur_iterations);
+                   rep.pressure_iterations, rep.schur_iterations, rep.amg_setups);
     if (rep.velocity_change <= s.picard_tol && rep.pressure_change <= s.picard_tol) {
       rep.converged = true;
       break;
@@ -529,6 +550,7 @@ FluidStepReport FluidSolver::step() {
   }
   rep.divergence_l2 = std::sqrt(l2);
   time_ = t_new;
+  have_previous_ = true;
   return rep;
 }
 

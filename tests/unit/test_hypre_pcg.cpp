@@ -24,7 +24,12 @@ struct PoissonRun {
   double max_error = 0.0, rel_residual = 0.0;
 };
 
-PoissonRun run_poisson(int n) {
+struct PoissonSystem {
+  CsrMatrix a;
+  std::vector<double> rhs, exact;
+};
+
+PoissonSystem build_poisson(int n) {
   const double pi = std::numbers::pi;
   StructuredBoxSpec spec;
   spec.cells = {n, n, n};
@@ -54,6 +59,15 @@ PoissonRun run_poisson(int n) {
       for (int j = 0; j < 4; ++j) rhs[tn[4 * t + i]] += m[4 * i + j] * 3.0 * pi * pi * exact[tn[4 * t + j]];
   }
   kernels::scalar_laplacian_assemble({tn, vol, grad, ones, slot, diag, fixed, value, a.val, rhs});
+  return {std::move(a), std::move(rhs), std::move(exact)};
+}
+
+PoissonRun run_poisson(int n) {
+  const PoissonSystem sys = build_poisson(n);
+  const CsrMatrix& a = sys.a;
+  const std::vector<double>& rhs = sys.rhs;
+  const std::vector<double>& exact = sys.exact;
+  const size_t nn = rhs.size();
   PoissonRun r;
   HypreAmgPcg amg;
   amg.set_matrix(a);
@@ -89,6 +103,41 @@ TEST(HypreAmgPcg, PoissonIterationsStayFlat) {
   // Second order: halving h divides the nodal error by about 4.
   EXPECT_GT(coarse.max_error / fine.max_error, 3.0);
   EXPECT_LT(fine.max_error, 1e-2);
+}
+
+// The per-solve tolerance of HypreAmgPcg::solve and BiCGSTAB's forcing term (initial_rel_tol), used by
+// the fluid solver's inexact Picard iterations: each stops as soon as its own bound is met, and the
+// override does not stick to later solves.
+TEST(HypreAmgPcg, PerSolveToleranceAndBicgstabForcing) {
+  const PoissonSystem sys = build_poisson(12);
+  const size_t nn = sys.rhs.size();
+  HypreAmgPcg amg;
+  amg.set_matrix(sys.a);
+  std::vector<double> u(nn, 0.0);
+  const AmgPcgResult loose = amg.solve(sys.rhs, u, 1e-3);
+  EXPECT_LE(loose.rel_residual, 1e-3);
+  std::fill(u.begin(), u.end(), 0.0);
+  const AmgPcgResult full = amg.solve(sys.rhs, u);
+  EXPECT_LE(full.rel_residual, 1e-8);
+  EXPECT_LT(loose.iterations, full.iterations);
+  // BiCGSTAB from a guess 1 % off the solution: forcing 1e-3 reduces that guess's residual 1000-fold.
+  BicgstabJacobi bicg;
+  std::vector<double> x(nn), r(nn);
+  for (size_t i = 0; i < nn; ++i) x[i] = u[i] * (1.0 + 0.01 * std::sin(7.0 * static_cast<double>(i)));
+  const auto residual = [&](const std::vector<double>& v) {
+    sys.a.multiply(v, r);
+    double s = 0.0;
+    for (size_t i = 0; i < nn; ++i) s += (sys.rhs[i] - r[i]) * (sys.rhs[i] - r[i]);
+    return std::sqrt(s);
+  };
+  const double r0 = residual(x);
+  std::vector<double> x_full = x;
+  const KrylovResult forced = bicg.solve(sys.a, sys.rhs, x, 1e-12, 0.0, 2000, 1e-3);
+  const KrylovResult strict = bicg.solve(sys.a, sys.rhs, x_full, 1e-12, 0.0, 2000);
+  EXPECT_TRUE(forced.converged);
+  EXPECT_LE(residual(x), 1.01e-3 * r0);  // 1 %: true against recursive residual
+  EXPECT_GT(residual(x), 1e-12 * r0);    // it stopped early, not at the strict tolerance
+  EXPECT_LT(forced.iterations, strict.iterations);
 }
 
 TEST(HypreAmgPcg, RefreshedValuesAreUsed) {

@@ -1,0 +1,135 @@
+// Stokes drag on a sphere (issue 6, fluid.md 4.2): a sphere of radius R at rest in the concentric
+// spherical container of radius b whose wall moves with the uniform velocity U e_x (the frame of a
+// sphere translating at -U through fluid held at rest by the container). Creeping flow (no convection,
+// dt so large that rho/dt is 1e-8 of mu/h^2: one steady Stokes solve). Exact drag (Cunningham 1910,
+// Williams 1915; Happel & Brenner 1965, sec. 4-22), lambda = R / b:
+//   F = 6 pi mu R U K,  K = (1 - lambda^5) / (1 - 9/4 lambda + 5/2 lambda^3 - 9/4 lambda^5 + lambda^6).
+// Only a quarter is meshed (y >= 0, z >= 0) with free slip on the symmetry planes y = 0 and z = 0; the
+// drag is 4 times the quarter's.
+//
+// Drag = the consistent reaction force on the sphere's no-slip nodes: the residual of the discrete
+// x-momentum equation at those nodes, with the pressure term integrated by parts,
+//   F_x = -sum_{i on sphere} sum_t V_t (mu grad u_x . grad N_i - p_t d N_i / dx),  p_t = cell mean,
+// which equals int_sphere (sigma n)_x dS for the exact solution (at interior nodes it is the equation
+// the solver solved, so it vanishes there) and converges at the rate of the energy norm squared, unlike
+// the traction of the piecewise-constant P1 stress, which is O(h) on the surface. The SUPG and
+// absorption terms are off, and the time term is rho/dt (u - u^n) ~ 1e-8: they add nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "engine/mesh/sphere_shell_generator.hpp"
+#include "kernels/fluid_element.hpp"
+#include "systems/fluid/fluid_solver.hpp"
+
+namespace rift {
+namespace {
+
+using fluid::BoundaryKind;
+using fluid::FluidBoundary;
+using fluid::FluidSettings;
+using fluid::FluidSolver;
+using fluid::Vec3;
+
+double container_correction(double lambda) {
+  const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda, l6 = l5 * lambda;
+  return (1 - l5) / (1 - 2.25 * lambda + 2.5 * l3 - 2.25 * l5 + l6);
+}
+
+TEST(FluidSphereDrag, StokesDragInASphericalContainer) {
+  // Container correction check against the first-order wall effect K = 1 + 9/4 lambda.
+  EXPECT_NEAR(container_correction(1e-4), 1 + 2.25e-4, 1e-7);
+  constexpr double kR = 1.0, kB = 8.0, kMu = 1.0, kU = 1.0;
+  SphereShellSpec spec;
+  spec.radius = kR;
+  spec.outer_radius = kB;
+  // h = 0.08 R at the sphere, growing by 0.15 per unit distance. The far field matters: at grading 0.3
+  // the error was +5.0 % (h 0.08), +4.5 % (h 0.05); at 0.15 +1.9 %, at 0.08 +0.8 % (56k tets, 13 s).
+  spec.size_min = 0.08;
+  spec.size_max = 2.0;
+  spec.grading = 0.15;
+  const auto t0 = std::chrono::steady_clock::now();
+  const TetMesh mesh = generate_sphere_shell_mesh(spec);
+  const auto t1 = std::chrono::steady_clock::now();
+
+  FluidSettings s;
+  s.rho = 1.0;
+  s.mu = kMu;
+  s.dt = 1e8;
+  s.convection = false;
+  s.supg = false;
+  s.picard_max_iterations = 2;
+  s.picard_tol = 1e-6;
+  std::vector<FluidBoundary> bcs{{"ymin", BoundaryKind::free_slip, {}, {}},
+                                 {"zmin", BoundaryKind::free_slip, {}, {}},
+                                 {"sphere", BoundaryKind::no_slip, {}, {}},
+                                 {"outer",
+                                  BoundaryKind::velocity,
+                                  [](const Vec3&, double) {
+                                    return Vec3{kU, 0, 0};
+                                  },
+                                  {}}};
+  FluidSolver solver(mesh, s, bcs);
+  const fluid::FluidStepReport rep = solver.step();
+  const auto t2 = std::chrono::steady_clock::now();
+
+  // Reaction on the sphere nodes.
+  const size_t nn = solver.node_count();
+  const int32_t sphere = mesh.surface_index("sphere");
+  std::vector<uint8_t> on_sphere(nn, 0);
+  for (size_t f = 0; f < mesh.triangles.size(); ++f)
+    if (mesh.triangle_surface[f] == sphere)
+      for (int32_t v : mesh.triangles[f]) on_sphere[v] = 1;
+  const auto tets = solver.tets();
+  const size_t nt = tets.size() / 4;
+  std::vector<double> vol(nt), grad(12 * nt), h(nt);
+  kernels::p1_prepare(solver.nodes(), tets, vol, grad, h);
+  const auto u = solver.velocity();
+  const auto p = solver.pressure();
+  double reaction = 0.0;
+  for (size_t t = 0; t < nt; ++t) {
+    const double* g = &grad[12 * t];
+    double gux[3] = {0, 0, 0}, pbar = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      const size_t n = static_cast<size_t>(tets[4 * t + a]);
+      for (int d = 0; d < 3; ++d) gux[d] += u[3 * n] * g[3 * a + d];
+      pbar += 0.25 * p[n];
+    }
+    for (int a = 0; a < 4; ++a) {
+      if (!on_sphere[tets[4 * t + a]]) continue;
+      reaction += vol[t] * (kMu * (gux[0] * g[3 * a] + gux[1] * g[3 * a + 1] + gux[2] * g[3 * a + 2]) -
+                            pbar * g[3 * a]);
+    }
+  }
+  const double drag = -4.0 * reaction;
+  // The mesh fills the quarter shell, inscribed in it: Mesh_3 keeps boundary triangles within 0.1 h of
+  // the (faceted) spheres (facet_distance), so the volume falls short by at most 3 * 0.1 h_b / b
+  // (h_b = 1.13 at the outer sphere: 4.2 %; 1.2 % measured). A container 1.2 % / 3 smaller in radius
+  // raises K by 0.1 %.
+  double volume = 0.0;
+  for (double v : vol) volume += v;
+  const double shell = std::numbers::pi / 3 * (kB * kB * kB - kR * kR * kR);
+  const double h_outer = std::min(spec.size_max, spec.size_min + spec.grading * (kB - kR));
+  EXPECT_LE(volume / shell, 1.0 + 1e-12);
+  EXPECT_GE(volume / shell, 1.0 - 0.3 * h_outer / kB);
+  const double k = container_correction(kR / kB);
+  const double exact = 6 * std::numbers::pi * kMu * kR * kU * k;
+  const double err = drag / exact - 1.0;
+  std::printf(
+      "sphere drag: %zu nodes, %zu tets, mesh %.1f s, solve %.1f s; Picard %d, FGMRES %d, BiCGSTAB %d, PCG "
+      "%d; volume / exact %.5f; K = %.4f, F = %.4f, exact %.4f, error %+.2f %%; div max %.2e\n",
+      nn, nt, std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(),
+      rep.picard_iterations, rep.schur_iterations, rep.velocity_iterations, rep.pressure_iterations,
+      volume / shell, k, drag, exact, 100 * err, rep.divergence_max);
+  // 5 % (issue 6): the discretisation error at this resolution; the container formula is exact for the
+  // concentric geometry and the faceted spheres are within 3.4e-4 R of the true ones.
+  EXPECT_LE(std::abs(err), 0.05);
+  EXPECT_TRUE(rep.converged);
+}
+
+}  // namespace
+}  // namespace rift

@@ -233,7 +233,14 @@ Access ContactSystem::access() const {
 
 void ContactSystem::run(const StepContext& ctx) {
   const size_t events = store_.table(solid::event_table).size();
-  if (events > events_seen_ || (!awake_ && bodies_ > 1)) must_detect_ = add_new_candidates() || must_detect_;
+  if (events > events_seen_ || (!awake_ && bodies_ > 1)) {
+    // A restored run (detections already made) replays the log to rebuild candidates and grouping only:
+    // its pair list and detection positions came with the checkpoint, so detecting now would change the
+    // pair table (not the physics) and the state would no longer be the straight run's bit for bit.
+    const bool restored =
+        !awake_ && store_.table(solid::contact_state_table).span<const int64_t>("detections")[0] > 0;
+    must_detect_ = (add_new_candidates() && !restored) || must_detect_;
+  }
   if (candidates_.empty()) return;  // one intact body: nothing can touch
   if (must_detect_ || detection_needed()) detect();
   compute_forces(ctx);

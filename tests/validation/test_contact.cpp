@@ -5,7 +5,9 @@
 #include <cmath>
 #include <set>
 
+#include "engine/core/state_hash.hpp"
 #include "systems/solid_tables.hpp"
+#include "tests/unit/test_run_support.hpp"
 #include "tests/validation/validation_support.hpp"
 
 namespace rift::validation {
@@ -246,6 +248,52 @@ TEST(ContactValidation, SameStateOnOneTwoAndFourThreads) {
   }
   EXPECT_EQ(hashes[0], hashes[1]);
   EXPECT_EQ(hashes[0], hashes[2]);
+}
+
+// A step twice the contact estimate: the collision gains energy through the contact springs; the run must
+// stop with the contact diagnosis (cause and remedy), not finish or write NaN.
+TEST(ContactValidation, AStepAboveTheContactLimitStopsWithADiagnosis) {
+  Scene scene = validation_scene("contact_collision.yaml", {"time.allow_unstable_dt=true"});
+  double contact_dt = 0.0;
+  {
+    RunOptions o;
+    o.progress = false;
+    o.write_output = false;
+    Simulation probe(scene, o);
+    contact_dt = solid_of(probe).stable_dt();
+  }
+  scene.time.dt = 2.0 * contact_dt;
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "rift_contact_unstable";
+  fs::remove_all(dir);
+  try {
+    test::run_scene(scene, dir, 1);
+    ADD_FAILURE() << "the run finished";
+  } catch (const std::exception& e) {
+    const std::string why = e.what();
+    EXPECT_NE(why.find("contact is putting energy"), std::string::npos) << why;
+    EXPECT_NE(why.find("solid.contact.penalty"), std::string::npos) << why;
+  }
+  fs::remove_all(dir);
+}
+
+// Restart with active contacts: the pair list, the friction histories, the detection positions and the
+// contact energy integrals go through the checkpoint; the grouping of node copies is rebuilt from the
+// fracture log. Stopped mid-slide, restarted: bitwise the same end state as a straight run.
+TEST(ContactValidation, RestartMidSlideIsBitwiseIdentical) {
+  const Scene scene = validation_scene("contact_incline.yaml", {"time.end=0.02", "output.interval=0.005"});
+  namespace fs = std::filesystem;
+  const fs::path a = fs::temp_directory_path() / "rift_contact_straight",
+                 b = fs::temp_directory_path() / "rift_contact_restarted";
+  fs::remove_all(a);
+  fs::remove_all(b);
+  const RunResult straight = test::run_scene(scene, a, 2);
+  ASSERT_TRUE(straight.completed);
+  test::run_scene(scene, b, 1, straight.steps / 2);
+  const RunResult second = test::run_scene(scene, b, 2, std::nullopt, true);
+  EXPECT_EQ(hex64(second.state_hash), hex64(straight.state_hash));
+  fs::remove_all(a);
+  fs::remove_all(b);
 }
 
 }  // namespace

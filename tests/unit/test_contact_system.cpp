@@ -1,0 +1,122 @@
+// The contact system's set-up and its sleep: block meshes, initial cracks, the scene keys, and no work in a
+// scene of one intact body (the physics is in tests/validation/test_contact.cpp).
+#include <gtest/gtest.h>
+
+#include "engine/mesh/block_assembly.hpp"
+#include "engine/scene/load_scene.hpp"
+#include "engine/simulation.hpp"
+#include "systems/solid_model.hpp"
+#include "systems/solid_tables.hpp"
+
+using namespace rift;
+
+namespace {
+
+Scene validation(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/" + name, overrides);
+}
+
+std::unique_ptr<Simulation> start(const Scene& scene) {
+  RunOptions o;
+  o.progress = false;
+  o.write_output = false;
+  return std::make_unique<Simulation>(scene, o);
+}
+
+const Table& table(Simulation& sim, const char* name) {
+  return sim.world().store.table(name);
+}
+
+}  // namespace
+
+TEST(BlockAssembly, BlocksAreSeparateBodiesWithPrefixedSurfaces) {
+  std::vector<BlockSpec> blocks(2);
+  blocks[0] = {"a", {0, 0, 0}, {1, 1, 1}, {2, 1, 1}};
+  blocks[1] = {"b", {0, 0, 2}, {1, 2, 1}, {1, 2, 1}};
+  const TetMesh m = generate_block_assembly(blocks);
+  EXPECT_EQ(m.tets.size(), 6u * 2 + 6u * 2);
+  EXPECT_EQ(m.nodes.size(), 12u + 12u);
+  ASSERT_EQ(m.region_names, (std::vector<std::string>{"a", "b"}));
+  EXPECT_GE(m.surface_index("a_xmin"), 0);
+  EXPECT_GE(m.surface_index("b_zmax"), 0);
+  for (size_t e = 0; e < m.tets.size(); ++e)  // no node is shared between the blocks
+    for (int32_t n : m.tets[e]) EXPECT_EQ(n < 12, m.tet_region[e] == 0);
+  EXPECT_DOUBLE_EQ(m.nodes.back()[2], 3.0);  // origin applied
+  blocks[1].name = "a";
+  EXPECT_THROW(generate_block_assembly(blocks), Error);
+}
+
+TEST(ContactScene, KeysAreReadWithDefaults) {
+  const Scene s = validation("contact_incline.yaml");
+  ASSERT_TRUE(s.solid->contact);
+  EXPECT_FALSE(s.solid->contact->penalty);  // resolved by the solid: 10 x young
+  EXPECT_DOUBLE_EQ(s.solid->contact->friction, 0.3);
+  EXPECT_DOUBLE_EQ(s.solid->contact->tangential_penalty, 0.1);
+  EXPECT_DOUBLE_EQ(s.solid->contact->damping, 0.2);
+  EXPECT_EQ(s.mesh.generate->shape, MeshGenerateSpec::Shape::blocks);
+  EXPECT_EQ(s.mesh.generate->blocks[1].cells, (std::array<int, 3>{2, 2, 2}));
+}
+
+TEST(ContactScene, BadValuesAreErrorsAtTheirKey) {
+  auto error_of = [](const std::vector<std::string>& overrides) {
+    try {
+      validation("contact_incline.yaml", overrides);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_of({"solid.contact.friction=-1"}).find("solid.contact.friction"), std::string::npos);
+  EXPECT_NE(error_of({"solid.contact.damping=2"}).find("solid.contact.damping"), std::string::npos);
+  EXPECT_NE(error_of({"solid.contact.penalty=0"}).find("solid.contact.penalty"), std::string::npos);
+  EXPECT_NE(error_of({"solid.contact.frction=0.2"}).find("friction"), std::string::npos);  // did you mean
+  EXPECT_NE(error_of({"mesh.generate.blocks[0].cells=[1.5, 1, 1]"}).find("whole numbers"), std::string::npos);
+  EXPECT_NE(error_of({"mesh.generate.size_min=0.01"}).find("for blocks"), std::string::npos);
+}
+
+TEST(InitialCracks, JointsOnThePlaneStartBrokenWithoutFractureEnergy) {
+  auto sim = start(validation("contact_cut_column.yaml"));
+  const Table& events = table(*sim, solid::event_table);
+  ASSERT_EQ(events.size(), 8u);  // 2 x 2 cubes, 2 triangles each, on z = 0.02
+  for (size_t r = 0; r < events.size(); ++r) {
+    EXPECT_EQ(events.span<const uint8_t>("mode")[r], 3);
+    EXPECT_EQ(events.span<const int64_t>("step")[r], -1);
+    EXPECT_NEAR(events.span<const double>("centroid")[3 * r + 2], 0.02, 1e-12);
+    EXPECT_NEAR(std::abs(events.span<const double>("normal")[3 * r + 2]), 1.0, 1e-12);
+  }
+  size_t broken = 0;
+  for (uint8_t b : table(*sim, solid::joint_table).span<const uint8_t>("broken")) broken += b == 3;
+  EXPECT_EQ(broken, 8u);
+  for (int i = 0; i < 5; ++i) sim->step_once();
+  SolidModel* solid = nullptr;
+  for (auto& m : sim->world().models)
+    if (auto* s = dynamic_cast<SolidModel*>(m.get())) solid = s;
+  ASSERT_NE(solid, nullptr);
+  // Nothing dissipated: only the round-off between the intact joints' work and their stored energy.
+  EXPECT_LT(std::abs(solid->energies().fracture), 1e-12);
+}
+
+TEST(InitialCracks, APlaneThatMeetsNoJointIsAnError) {
+  const Scene scene =
+      validation("contact_cut_column.yaml", {"solid.fracture.initial_cracks[0].point=[0, 0, 0.015]"});
+  try {
+    start(scene);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("initial_cracks"), std::string::npos) << e.what();
+  }
+}
+
+// Model only what a scene requires: one intact body with a fracture zone and contact on has no candidates,
+// detects nothing and allocates no pairs until a joint breaks.
+TEST(ContactSystem, SleepsInOneIntactBody) {
+  auto sim = start(validation("contact_cut_column.yaml", {"solid.fracture.initial_cracks=[]"}));
+  for (int i = 0; i < 50; ++i) sim->step_once();
+  EXPECT_EQ(table(*sim, solid::contact_pair_table).size(), 0u);
+  EXPECT_EQ(table(*sim, solid::contact_state_table).span<const int64_t>("detections")[0], 0);
+  // With the crack, the same scene wakes at once: the crack's tets pair up across it.
+  auto cracked = start(validation("contact_cut_column.yaml"));
+  cracked->step_once();
+  EXPECT_GT(table(*cracked, solid::contact_pair_table).size(), 0u);
+  EXPECT_EQ(table(*cracked, solid::contact_state_table).span<const int64_t>("detections")[0], 1);
+}

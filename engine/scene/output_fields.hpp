@@ -6,8 +6,8 @@
 
 namespace rift {
 
-inline constexpr std::array<std::string_view, 12> kOutputFieldNames{
-    "displacement", "velocity", "force",   "stress", "principal_stress", "region",
-    "material",     "damage",   "opening", "slip",   "broken",           "energy"};
+inline constexpr std::array<std::string_view, 15> kOutputFieldNames{
+    "displacement", "velocity", "force",  "stress", "principal_stress", "region",     "material", "damage",
+    "opening",      "slip",     "broken", "energy", "pressure",         "divergence", "cfl"};
 
 }  // namespace rift

@@ -1,4 +1,5 @@
 // mesh: a Gmsh file, or a box (with notches) or a disc the mesher generates.
+#include <cmath>
 #include <filesystem>
 
 #include "engine/scene/number_text.hpp"
@@ -68,8 +69,8 @@ CylinderSpec read_cylinder(MapReader& c) {
 void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   const bool has_box = g.has("box"), has_cylinder = g.has("cylinder");
   if (has_box == has_cylinder && !g.silent())
-    g.context().error(has_box ? g.where("cylinder") : g.where(), "mesh.generate",
-                      "exactly one of mesh.generate.box or mesh.generate.cylinder",
+    g.context().error(has_box ? g.where("cylinder") : g.where(), g.path(),
+                      "exactly one of " + g.key_path("box") + " or " + g.key_path("cylinder"),
                       has_box ? "both" : "neither");
   if (has_box && !has_cylinder) {
     spec.size = g.vec3("box", positive("m"), std::nullopt);
@@ -83,15 +84,41 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   } else {
     g.declare("cylinder");
     MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("cylinder"), g.key_path("cylinder"), g.where());
+        MapReader::silenced(g.context(), g.key_path("cylinder"), g.doc_key_path("cylinder"), g.where());
     read_cylinder(unused);
   }
+}
+
+// cells: [nx, ny, nz], whole numbers >= 1.
+std::optional<std::array<int, 3>> read_cells(MapReader& g) {
+  const std::array<double, 3> c = g.vec3("cells", RealRule{"", 1.0, 1e6, false, false}, std::nullopt);
+  if (!g.ok("cells")) return std::nullopt;
+  std::array<int, 3> cells{};
+  for (int d = 0; d < 3; ++d) {
+    if (c[d] != std::floor(c[d])) {
+      g.error("cells", "three whole numbers of cells >= 1 (nx, ny, nz)");
+      return std::nullopt;
+    }
+    cells[d] = static_cast<int>(c[d]);
+  }
+  return cells;
 }
 
 MeshGenerateSpec read_generate(MapReader& g) {
   MeshGenerateSpec spec;
   read_shape(g, spec);
   spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
+  if (g.has("cells") && spec.shape == MeshGenerateSpec::Shape::box) {  // a lattice: no sizing, no notches
+    spec.cells = read_cells(g);
+    for (auto key : {"size_min", "size_max", "grading", "seed", "notches"})
+      g.forbid(key, "with cells (a structured lattice has no sizing, seed or notches)");
+    g.finish();
+    return spec;
+  }
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder)
+    g.forbid("cells", "for a cylinder (a structured lattice is a box)");
+  else
+    g.declare("cells");
   spec.size_min = g.real("size_min", positive("m"), std::nullopt);
   spec.size_max = g.real("size_max", positive("m"), std::nullopt);
   if (g.ok("size_min") && g.ok("size_max") && spec.size_max < spec.size_min)
@@ -130,11 +157,11 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
   MeshSpec mesh;
   const bool has_file = sec.has("file"), has_generate = sec.has("generate");
   if (has_file == has_generate && !sec.silent()) {
-    const std::string expected = "exactly one of mesh.file or mesh.generate";
+    const std::string expected = "exactly one of " + sec.key_path("file") + " or " + sec.key_path("generate");
     if (has_file)
-      sec.context().error(sec.where("generate"), "mesh", expected, "both");
+      sec.context().error(sec.where("generate"), sec.path(), expected, "both");
     else
-      sec.context().error(sec.where(), "mesh", expected, "neither");
+      sec.context().error(sec.where(), sec.path(), expected, "neither");
   }
   if (has_file) {
     std::string file = sec.string("file", std::nullopt);

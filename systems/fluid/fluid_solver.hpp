@@ -110,6 +110,14 @@ class FluidSolver {
 
   FluidStepReport step();
 
+  // Checkpoint/restart. Besides u and p a step depends on the coefficients the pressure matrix (the
+  // preconditioner, rebuilt only when they drift) was last assembled with: one per tet, all zero before
+  // the first assembly. restore_state with what velocity(), pressure() and these held at time t makes
+  // the next step bitwise the one the saving run took.
+  std::span<const double> pressure_matrix_coefficients() const { return pcoef_matrix_; }
+  void restore_state(double t, std::span<const double> u, std::span<const double> p,
+                     std::span<const double> pressure_matrix_coefficients);
+
   double time() const { return time_; }
   std::span<const double> velocity() const { return u_; }  // 3 per node
   std::span<const double> pressure() const { return p_; }  // 1 per node

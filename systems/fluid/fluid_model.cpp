@@ -196,14 +196,14 @@ std::optional<std::string> FluidModel::check_health(const StepContext& after) {
   const std::string advice =
       "What to change: lower fluid.dt (the step's CFL was " + fmt::format("{:.3g}", r.cfl) +
       "), use scheme: backward_euler and supg: true for convection-dominated flow, refine the mesh, or check "
-      "that the boundary conditions admit a solution (an outflow or pressure surface for a driven inflow).";
+      "the boundary conditions: their magnitudes, and that they admit a solution (an outflow or pressure "
+      "surface for a driven inflow).";
   if (bad > 0)
     return fmt::format(
         "{} fluid nodes have a non-finite velocity or pressure after step {} (t = {:.6g} s); first: node {} "
-        "at ({:.4g}, {:.4g}, {:.4g}) m. Likely cause: the step diverged (Picard {} after {} iterations, "
-        "velocity change {:.3g}). {}",
-        bad, after.step, after.time, first, x[3 * first], x[3 * first + 1], x[3 * first + 2],
-        r.converged ? "converged" : "not converged", r.picard_iterations, r.velocity_change, advice);
+        "at ({:.4g}, {:.4g}, {:.4g}) m. Likely cause: the step diverged (a dt too large for the flow), or a "
+        "boundary value, body force or initial velocity so large that the arithmetic overflowed. {}",
+        bad, after.step, after.time, first, x[3 * first], x[3 * first + 1], x[3 * first + 2], advice);
   if (!r.converged && spec_.on_picard_failure == FluidSpec::OnPicardFailure::stop) {
     cell_fields();
     const size_t worst = static_cast<size_t>(std::max_element(cfl_.begin(), cfl_.end()) - cfl_.begin());

@@ -249,3 +249,24 @@ TEST(FluidScene, PicardFailureStopsTheRunWithADiagnosis) {
   }
   EXPECT_EQ(sim.step(), 1);
 }
+
+TEST(FluidScene, NonFiniteStateStopsTheRunWithADiagnosis) {
+  RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  // An inlet pressure at the edge of double range overflows in the first step.
+  Simulation sim(
+      load_scene(kScenes + "validation/poiseuille.yaml",
+                 {"fluid.boundaries[0].value=1.0e308", "mesh.generate.cells=[4, 2, 1]", "time.end=3"}),
+      o);
+  try {
+    sim.run();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("run stopped by the fluid guard"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("non-finite velocity or pressure after step 1 (t = 1 s)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("What to change"), std::string::npos) << msg;
+  }
+  EXPECT_EQ(sim.step(), 1);
+}

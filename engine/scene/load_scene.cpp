@@ -54,6 +54,9 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
     if (has_solid)
       doc.error("fluid", "no fluid section together with a solid section",
                 "the fluid-solid coupling is a later feature; run the fluid in a scene of its own");
+    else if (fluid_mesh && has_mesh)
+      doc.error("mesh", "no top-level mesh when fluid.mesh is given (nothing else would use it)",
+                "keep one of mesh and fluid.mesh");
   }
   MapReader output = doc.section("output", false);
   scene.output = read_output_section(output);

@@ -8,6 +8,7 @@ namespace {
 // FluidBoundarySpec::Kind order.
 constexpr std::array<std::string_view, 5> kBoundaryTypes{"no_slip", "velocity", "free_slip", "pressure",
                                                          "outflow"};
+constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 constexpr std::array<std::string_view, 2> kSchemes{"backward_euler", "crank_nicolson"};
 constexpr std::array<std::string_view, 2> kCouplings{"schur_gmres", "projection"};
 constexpr std::array<std::string_view, 2> kOnFailure{"stop", "continue"};
@@ -19,7 +20,7 @@ FluidBoundarySpec read_boundary(MapReader& b) {
   bc.surface = b.string("surface", std::nullopt);
   bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
   if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
-    for (auto key : {"direction", "value"}) b.declare(key);
+    for (auto key : {"direction", "value", "parabolic"}) b.declare(key);
     b.finish();
     return bc;
   }
@@ -29,8 +30,10 @@ FluidBoundarySpec read_boundary(MapReader& b) {
   if (bc.kind == Kind::velocity) {
     bc.direction = b.vec3("direction", any_real("m/s"), std::nullopt);
     bc.function = b.time_function("value", "", one);  // dimensionless: scales `direction`
+    for (size_t axis : b.choice_list("parabolic", kAxes, {}, 0)) bc.parabolic[axis] = true;
   } else {
     b.forbid("direction", for_type);
+    b.forbid("parabolic", for_type);
     if (bc.kind == Kind::pressure)
       bc.function = b.time_function("value", "Pa", std::nullopt);
     else

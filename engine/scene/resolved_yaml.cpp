@@ -231,7 +231,13 @@ void emit_fluid(Lines& o, const FluidSpec& f) {
   for (const auto& b : f.boundaries) {
     o.item(2, "surface", quoted(b.surface));
     o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
-    if (b.kind == Kind::velocity) o.line(3, "direction", vec3(b.direction));
+    if (b.kind == Kind::velocity) {
+      o.line(3, "direction", vec3(b.direction));
+      std::string axes;
+      for (int a = 0; a < 3; ++a)
+        if (b.parabolic[a]) axes += std::string(axes.empty() ? "" : ", ") + "xyz"[a];
+      o.line(3, "parabolic", "[" + axes + "]");
+    }
     if (b.kind == Kind::velocity || b.kind == Kind::pressure) emit_time_function(o, 3, "value", b.function);
   }
   o.line(1, "ghia_cavity", f.ghia_cavity ? "true" : "false");

@@ -136,6 +136,9 @@ struct FluidBoundarySpec {
   std::string surface;
   std::array<double, 3> direction{};  // velocity: the vector [m/s] `function` scales
   TimeFunction function;              // velocity: scales `direction` (1 by default); pressure: p [Pa]
+  // velocity: axes along which the value falls parabolically to 0 at the surface's bounding box (peak 1 in
+  // the middle): 4 (x - lo)(hi - x) / (hi - lo)^2 per axis; none: uniform.
+  std::array<bool, 3> parabolic{};
 };
 
 // Incompressible Navier-Stokes (systems/fluid, docs/fluid.md) on its own mesh.

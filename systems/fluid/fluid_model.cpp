@@ -34,8 +34,27 @@ std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const Te
     fb.surface = b.surface;
     fb.kind = static_cast<fluid::BoundaryKind>(b.kind);
     if (b.kind == FluidBoundarySpec::Kind::velocity) {
-      fb.velocity = [dir = b.direction, f = b.function](const fluid::Vec3&, double t) {
-        const double s = f(t);
+      // The surface's bounding box, for a parabolic profile.
+      std::array<double, 3> lo{}, hi{};
+      lo.fill(std::numeric_limits<double>::infinity());
+      hi.fill(-std::numeric_limits<double>::infinity());
+      const int32_t s = mesh.surface_index(b.surface);
+      for (size_t t = 0; t < mesh.triangles.size(); ++t)
+        if (mesh.triangle_surface[t] == s)
+          for (int32_t n : mesh.triangles[t])
+            for (int d = 0; d < 3; ++d) {
+              lo[d] = std::min(lo[d], mesh.nodes[n][d]);
+              hi[d] = std::max(hi[d], mesh.nodes[n][d]);
+            }
+      for (int d = 0; d < 3; ++d)
+        if (b.parabolic[d] && !(hi[d] > lo[d]))
+          throw Error("fluid.boundaries[" + std::to_string(i) + "].parabolic: surface '" + b.surface +
+                      "' has no extent along " + "xyz"[d] + ", so no profile across it");
+      fb.velocity = [dir = b.direction, f = b.function, axes = b.parabolic, lo, hi](const fluid::Vec3& x,
+                                                                                    double t) {
+        double s = f(t);
+        for (int d = 0; d < 3; ++d)
+          if (axes[d]) s *= 4.0 * (x[d] - lo[d]) * (hi[d] - x[d]) / ((hi[d] - lo[d]) * (hi[d] - lo[d]));
         return fluid::Vec3{s * dir[0], s * dir[1], s * dir[2]};
       };
     } else if (b.kind == FluidBoundarySpec::Kind::pressure) {

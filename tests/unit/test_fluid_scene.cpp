@@ -127,6 +127,28 @@ fluid:
   sim.run();
 }
 
+TEST(FluidScene, TwoMeshesForOneFluidAreRefused) {
+  SceneLoadResult r = read_scene_text(R"(scene: {name: two_meshes}
+time: {end: 0.2}
+mesh:
+  generate: {box: [1, 1, 0.25], cells: [4, 4, 1]}
+fluid:
+  mesh:
+    generate: {box: [1, 1, 0.25], cells: [8, 8, 1]}
+  density: 1.0
+  viscosity: 0.01
+  dt: 0.1
+  boundaries:
+    - {surface: ymin, type: no_slip}
+)",
+                                      "inline", kScenes);
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].key_path, "mesh");
+  EXPECT_EQ(r.errors[0].line, 3);  // the mesh: key
+  EXPECT_NE(r.errors[0].expected.find("no top-level mesh when fluid.mesh is given"), std::string::npos)
+      << r.errors[0].format();
+}
+
 TEST(FluidScene, UnknownSurfaceListsTheMeshSurfaces) {
   try {
     RunOptions o;
@@ -269,4 +291,47 @@ TEST(FluidScene, NonFiniteStateStopsTheRunWithADiagnosis) {
     EXPECT_NE(msg.find("What to change"), std::string::npos) << msg;
   }
   EXPECT_EQ(sim.step(), 1);
+}
+
+TEST(FluidScene, ParabolicVelocityInlet) {
+  // The channel driven by a parabolic inlet (peak 1 m/s) instead of the pressure: inlet nodes carry
+  // 4 y (1 - y) after a step, the walls' corners 0.
+  const Scene scene = load_scene(kScenes + "validation/poiseuille.yaml",
+                                 {"fluid.boundaries[0]={surface: xmin, type: velocity, direction: [1, 0, 0], "
+                                  "parabolic: [y]}",
+                                  "mesh.generate.cells=[8, 4, 1]", "time.end=1"});
+  EXPECT_TRUE(scene.fluid->boundaries[0].parabolic[1]);
+  EXPECT_FALSE(scene.fluid->boundaries[0].parabolic[0]);
+  RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  Simulation sim(scene, o);
+  sim.run();
+  const auto& fluid = dynamic_cast<const FluidModel&>(*sim.world().models[0]).solver();
+  const auto x = fluid.nodes();
+  const auto u = fluid.velocity();
+  int inlet = 0;
+  for (size_t n = 0; n < fluid.node_count(); ++n) {
+    if (x[3 * n] != 0.0) continue;
+    ++inlet;
+    const double y = x[3 * n + 1];
+    // ymin/ymax (no slip) come after xmin in the list and win on the shared edge nodes.
+    const double want = (y == 0.0 || y == 1.0) ? 0.0 : 4.0 * y * (1.0 - y);
+    EXPECT_NEAR(u[3 * n], want, 1e-14) << "y = " << y;
+    EXPECT_EQ(u[3 * n + 1], 0.0);
+  }
+  EXPECT_EQ(inlet, 5 * 2);
+  // A profile across an axis the surface is flat along is an error naming the key.
+  try {
+    Simulation bad(load_scene(kScenes + "validation/poiseuille.yaml",
+                              {"fluid.boundaries[0]={surface: xmin, type: velocity, direction: [1, 0, 0], "
+                               "parabolic: [x]}"}),
+                   o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("fluid.boundaries[0].parabolic: surface 'xmin' has no extent along x"),
+        std::string::npos)
+        << e.what();
+  }
 }

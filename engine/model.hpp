@@ -24,6 +24,10 @@ class Model {
   virtual std::vector<System*> systems() = 0;
   // Largest step this model is stable with [s] (infinity when it sets no limit).
   virtual double stable_dt() const { return std::numeric_limits<double>::infinity(); }
+  // The one step this model runs with [s] (an implicit model's own step, e.g. fluid.dt), if it has one.
+  virtual std::optional<double> required_dt() const { return std::nullopt; }
+  // After a checkpoint was read into the store: bring state kept outside the store in line with it.
+  virtual void restored(const StepContext& at) {}
   // After each step: a diagnosis when the state is no longer physical (NaN, inverted element, ...).
   virtual std::optional<std::string> check_health(const StepContext& after) { return std::nullopt; }
   // Output: append this model's grids with the requested fields (empty list: every field).

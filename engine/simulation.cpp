@@ -58,6 +58,31 @@ Simulation::~Simulation() {
 void Simulation::choose_dt() {
   const double stable = world_->stable_dt();
   const TimeSpec& t = scene_.time;
+  // A model with its own step (the fluid's fluid.dt) fixes the run's: t = step x that dt exactly.
+  for (const auto& m : world_->models) {
+    const std::optional<double> fixed = m->required_dt();
+    if (!fixed) continue;
+    if (t.dt && std::abs(*t.dt - *fixed) > 1e-12 * *fixed)
+      throw Error(
+          fmt::format("time.dt = {:.17g} s disagrees with the {} step {:.17g} s ({}.dt). Remove "
+                      "time.dt (the {} step is the run's), or make them equal.",
+                      *t.dt, m->name(), *fixed, m->name(), m->name()));
+    if (*fixed > stable)
+      throw Error(
+          fmt::format("{}.dt = {:.6g} s is above the stable step {:.6g} s of another model in the run",
+                      m->name(), *fixed, stable));
+    const double n = t.end / *fixed;
+    total_steps_ = std::max<int64_t>(1, static_cast<int64_t>(std::llround(n)));
+    if (std::abs(n - static_cast<double>(total_steps_)) > 1e-6 * n)
+      throw Error(
+          fmt::format("time.end = {:.6g} s is not a whole number of {} steps of {:.6g} s ({}.dt): "
+                      "{:.6g} steps. Make time.end a multiple of {}.dt, e.g. {:.6g} s.",
+                      t.end, m->name(), *fixed, m->name(), n, m->name(), std::ceil(n) * *fixed));
+    dt_ = *fixed;
+    spdlog::info("dt = {:.6g} s ({}.dt), {} steps to t = {:.6g} s, {} thread(s)", dt_, m->name(),
+                 total_steps_, static_cast<double>(total_steps_) * dt_, options_.threads);
+    return;
+  }
   double requested;
   if (t.dt) {
     requested = *t.dt;
@@ -98,6 +123,7 @@ void Simulation::restart_from_latest() {
     throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s",
                             meta.dt, dt_));
   step_ = meta.step;
+  for (const auto& m : world_->models) m->restored(StepContext{step_, time(), dt_});
   outputs_written_ = meta.integers.count("outputs_written") ? meta.integers.at("outputs_written") : 0;
   series_->resume(time());
   // Reload the time series up to the restart step.

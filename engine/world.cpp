@@ -8,6 +8,8 @@
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/mesh/spatial_order.hpp"
+#include "engine/mesh/structured_box.hpp"
+#include "systems/fluid/fluid_model.hpp"
 #include "systems/mesh_conversion_model.hpp"
 #include "systems/solid_model.hpp"
 
@@ -30,6 +32,13 @@ TetMesh load_mesh(const MeshSpec& spec) {
   if (spec.file) return read_msh(*spec.file, spec.scale);
   if (spec.generate->shape == MeshGenerateSpec::Shape::blocks)
     return generate_block_assembly(spec.generate->blocks);
+  if (spec.generate->cells) {
+    StructuredBoxSpec box;
+    box.lo = spec.generate->origin;
+    for (int d = 0; d < 3; ++d) box.hi[d] = box.lo[d] + spec.generate->size[d];
+    box.cells = *spec.generate->cells;
+    return structured_box(box);
+  }
   if (spec.generate->shape == MeshGenerateSpec::Shape::cylinder)
     return generate_cylinder_mesh(*spec.generate);
   return generate_box_mesh(*spec.generate);
@@ -50,12 +59,16 @@ std::vector<std::string> notch_surfaces(const MeshSpec& spec, const TetMesh& mes
 std::unique_ptr<World> build_world(const Scene& scene) {
   auto world = std::make_unique<World>();
   const auto t0 = std::chrono::steady_clock::now();
-  world->mesh = load_mesh(scene.mesh);
+  // A fluid scene may give its mesh as fluid.mesh (the reader refuses solid and fluid together).
+  const MeshSpec& mesh_spec = scene.fluid && scene.fluid->mesh ? *scene.fluid->mesh : scene.mesh;
+  world->mesh = load_mesh(mesh_spec);
   order_along_curve(world->mesh);  // neighbours close in memory (engine/mesh/spatial_order.hpp)
   world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   world->mesh_quality = measure_quality(world->mesh);
   if (scene.solid)
     world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  if (scene.fluid)
+    world->models.push_back(std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
   // The continuous meshes only when something consumes them (today: an output that asks for the surface).
   if (scene.solid && scene.output.surface)
     world->models.push_back(std::make_unique<MeshConversionModel>(world->store, world->mesh,

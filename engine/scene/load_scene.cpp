@@ -15,6 +15,16 @@
 namespace rift {
 namespace {
 
+// `root[section][key]` exists (before the section is read, to decide what is required).
+bool has_mapping_key(const YamlNode& root, std::string_view section, std::string_view key) {
+  if (root.kind != YamlNode::Kind::mapping) return false;
+  for (const auto& e : root.entries)
+    if (e.key == section && e.value.kind == YamlNode::Kind::mapping)
+      for (const auto& k : e.value.entries)
+        if (k.key == key) return true;
+  return false;
+}
+
 // The whole document, section by section in schema order. A new top-level section is one more line.
 Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string& file_label,
                       const std::string& base_dir) {
@@ -29,11 +39,25 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
   read_scene_section(scene_sec, scene);
   MapReader time = doc.section("time", true);
   scene.time = read_time_section(time);
-  MapReader mesh = doc.section("mesh", true);
-  scene.mesh = read_mesh_section(mesh, base_dir);
+  // A fluid scene with its own fluid.mesh needs no top-level mesh.
+  const bool fluid_mesh = has_mapping_key(root, "fluid", "mesh");
+  const bool has_mesh = doc.has("mesh");
+  MapReader mesh = doc.section("mesh", !fluid_mesh);
+  if (has_mesh || !fluid_mesh) scene.mesh = read_mesh_section(mesh, base_dir);
   const bool has_solid = doc.has("solid");
   MapReader solid = doc.section("solid", false);
   if (has_solid) scene.solid = read_solid_section(solid);
+  const bool has_fluid = doc.has("fluid");
+  MapReader fluid = doc.section("fluid", false);
+  if (has_fluid) {
+    scene.fluid = read_fluid_section(fluid, base_dir);
+    if (has_solid)
+      doc.error("fluid", "no fluid section together with a solid section",
+                "the fluid-solid coupling is a later feature; run the fluid in a scene of its own");
+    else if (fluid_mesh && has_mesh)
+      doc.error("mesh", "no top-level mesh when fluid.mesh is given (nothing else would use it)",
+                "keep one of mesh and fluid.mesh");
+  }
   MapReader output = doc.section("output", false);
   scene.output = read_output_section(output);
   MapReader checkpoint = doc.section("checkpoint", false);

@@ -49,6 +49,10 @@ std::string MapReader::key_path(std::string_view key) const {
   return join_path(path_, key);
 }
 
+std::string MapReader::doc_key_path(std::string_view key) const {
+  return join_path(doc_path_, key);
+}
+
 bool MapReader::has(std::string_view key) const {
   return find_entry(node_, key) != nullptr;
 }
@@ -219,9 +223,9 @@ TimeFunction MapReader::time_function(std::string_view key, const std::string& u
   return v.value_or(fallback.value_or(TimeFunction{}));
 }
 
-MapReader MapReader::section(std::string_view key, bool required) {
+MapReader MapReader::section(std::string_view key, bool required, const std::string* doc_path) {
   const YamlEntry* e = lookup(key);
-  const std::string path = key_path(key), doc = join_path(doc_path_, key);
+  const std::string path = key_path(key), doc = doc_path ? *doc_path : join_path(doc_path_, key);
   if (!e) {
     if (!required) return MapReader(*ctx_, nullptr, path, doc, where_);
     if (!silent_) ctx_->error(where_, path, "a section (mapping) '" + std::string(key) + "'", kMissing);

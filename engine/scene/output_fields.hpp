@@ -6,8 +6,8 @@
 
 namespace rift {
 
-inline constexpr std::array<std::string_view, 13> kOutputFieldNames{
-    "displacement", "velocity", "force", "stress", "principal_stress", "region",       "material",
-    "damage",       "opening",  "slip",  "broken", "energy",           "contact_force"};
+inline constexpr std::array<std::string_view, 16> kOutputFieldNames{
+    "displacement", "velocity", "force",  "stress", "principal_stress", "region",   "material",   "damage",
+    "opening",      "slip",     "broken", "energy", "contact_force",    "pressure", "divergence", "cfl"};
 
 }  // namespace rift

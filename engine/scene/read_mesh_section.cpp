@@ -1,4 +1,5 @@
 // mesh: a Gmsh file, or a box (with notches) or a disc the mesher generates, or lattice blocks.
+#include <cmath>
 #include <filesystem>
 
 #include "engine/scene/number_text.hpp"
@@ -85,7 +86,8 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   if (shapes != 1 && !g.silent())
     g.context().error(
         shapes == 0 ? g.where() : g.where(has_box ? (has_cylinder ? "cylinder" : "blocks") : "blocks"),
-        "mesh.generate", "exactly one of mesh.generate.box, .cylinder or .blocks",
+        g.path(),
+        "exactly one of " + g.key_path("box") + ", " + g.key_path("cylinder") + " or " + g.key_path("blocks"),
         shapes == 0 ? "none" : "more than one");
   if (has_box && shapes == 1) {
     spec.size = g.vec3("box", positive("m"), std::nullopt);
@@ -99,7 +101,7 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   } else {
     g.declare("cylinder");
     MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("cylinder"), g.key_path("cylinder"), g.where());
+        MapReader::silenced(g.context(), g.key_path("cylinder"), g.doc_key_path("cylinder"), g.where());
     read_cylinder(unused);
   }
   if (has_blocks && shapes == 1) {
@@ -109,9 +111,24 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   } else {
     g.declare("blocks");
     MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("blocks"), g.key_path("blocks"), g.where());
+        MapReader::silenced(g.context(), g.key_path("blocks"), g.doc_key_path("blocks"), g.where());
     read_block(unused, 0);
   }
+}
+
+// cells: [nx, ny, nz], whole numbers >= 1.
+std::optional<std::array<int, 3>> read_cells(MapReader& g) {
+  const std::array<double, 3> c = g.vec3("cells", RealRule{"", 1.0, 1e6, false, false}, std::nullopt);
+  if (!g.ok("cells")) return std::nullopt;
+  std::array<int, 3> cells{};
+  for (int d = 0; d < 3; ++d) {
+    if (c[d] != std::floor(c[d])) {
+      g.error("cells", "three whole numbers of cells >= 1 (nx, ny, nz)");
+      return std::nullopt;
+    }
+    cells[d] = static_cast<int>(c[d]);
+  }
+  return cells;
 }
 
 MeshGenerateSpec read_generate(MapReader& g) {
@@ -119,13 +136,24 @@ MeshGenerateSpec read_generate(MapReader& g) {
   read_shape(g, spec);
   if (spec.shape == MeshGenerateSpec::Shape::blocks) {
     // A lattice: its element size is the cells', so the mesher's size keys do not apply.
-    for (auto key : {"origin", "size_min", "size_max", "grading", "seed"})
+    for (auto key : {"origin", "cells", "size_min", "size_max", "grading", "seed"})
       g.forbid(key, "for blocks (each block gives its origin, size and cells)");
     g.forbid("notches", "for blocks (notches cut a generated box)");
     g.finish();
     return spec;
   }
   spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
+  if (g.has("cells") && spec.shape == MeshGenerateSpec::Shape::box) {  // a lattice: no sizing, no notches
+    spec.cells = read_cells(g);
+    for (auto key : {"size_min", "size_max", "grading", "seed", "notches"})
+      g.forbid(key, "with cells (a structured lattice has no sizing, seed or notches)");
+    g.finish();
+    return spec;
+  }
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder)
+    g.forbid("cells", "for a cylinder (a structured lattice is a box)");
+  else
+    g.declare("cells");
   spec.size_min = g.real("size_min", positive("m"), std::nullopt);
   spec.size_max = g.real("size_max", positive("m"), std::nullopt);
   if (g.ok("size_min") && g.ok("size_max") && spec.size_max < spec.size_min)
@@ -164,11 +192,11 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
   MeshSpec mesh;
   const bool has_file = sec.has("file"), has_generate = sec.has("generate");
   if (has_file == has_generate && !sec.silent()) {
-    const std::string expected = "exactly one of mesh.file or mesh.generate";
+    const std::string expected = "exactly one of " + sec.key_path("file") + " or " + sec.key_path("generate");
     if (has_file)
-      sec.context().error(sec.where("generate"), "mesh", expected, "both");
+      sec.context().error(sec.where("generate"), sec.path(), expected, "both");
     else
-      sec.context().error(sec.where(), "mesh", expected, "neither");
+      sec.context().error(sec.where(), sec.path(), expected, "neither");
   }
   if (has_file) {
     std::string file = sec.string("file", std::nullopt);

@@ -86,31 +86,33 @@ void emit_time(Lines& o, const TimeSpec& t) {
   o.line(1, "allow_unstable_dt", t.allow_unstable_dt ? "true" : "false");
 }
 
-void emit_notch(Lines& o, const NotchSpec& n) {
+void emit_notch(Lines& o, const NotchSpec& n, int i) {
   static constexpr const char* kAxes[] = {"x", "y", "z"};
-  o.item(3, "shape", n.shape == NotchSpec::Shape::wedge ? "wedge" : "slot");
-  o.line(4, "face", n.face);
-  o.line(4, "opening_axis", kAxes[n.opening_axis]);
-  o.line(4, "center", yaml_real(n.center));
-  o.line(4, "depth", yaml_real(n.depth));
-  o.line(4, "opening", yaml_real(n.opening));
-  o.line(4, "name", quoted(n.name));
+  o.item(i + 3, "shape", n.shape == NotchSpec::Shape::wedge ? "wedge" : "slot");
+  o.line(i + 4, "face", n.face);
+  o.line(i + 4, "opening_axis", kAxes[n.opening_axis]);
+  o.line(i + 4, "center", yaml_real(n.center));
+  o.line(i + 4, "depth", yaml_real(n.depth));
+  o.line(i + 4, "opening", yaml_real(n.opening));
+  o.line(i + 4, "name", quoted(n.name));
 }
 
-void emit_mesh(Lines& o, const MeshSpec& m) {
-  o.line(0, "mesh");
-  if (m.file) o.line(1, "file", quoted(*m.file));
-  o.line(1, "scale", yaml_real(m.scale));
+// At `indent` (0: the top-level mesh, 1: fluid.mesh).
+void emit_mesh(Lines& o, const MeshSpec& m, int indent = 0) {
+  const int i = indent;
+  o.line(i, "mesh");
+  if (m.file) o.line(i + 1, "file", quoted(*m.file));
+  o.line(i + 1, "scale", yaml_real(m.scale));
   if (!m.generate) return;
   const MeshGenerateSpec& g = *m.generate;
-  o.line(1, "generate");
+  o.line(i + 1, "generate");
   if (g.shape == MeshGenerateSpec::Shape::blocks) {
-    o.line(2, "blocks");
+    o.line(i + 2, "blocks");
     for (const auto& b : g.blocks) {
-      o.item(3, "name", quoted(b.name));
-      o.line(4, "origin", vec3(b.origin));
-      o.line(4, "size", vec3(b.size));
-      o.line(4, "cells",
+      o.item(i + 3, "name", quoted(b.name));
+      o.line(i + 4, "origin", vec3(b.origin));
+      o.line(i + 4, "size", vec3(b.size));
+      o.line(i + 4, "cells",
              "[" + std::to_string(b.cells[0]) + ", " + std::to_string(b.cells[1]) + ", " +
                  std::to_string(b.cells[2]) + "]");
     }
@@ -118,21 +120,27 @@ void emit_mesh(Lines& o, const MeshSpec& m) {
   }
   const bool cylinder = g.shape == MeshGenerateSpec::Shape::cylinder;
   if (cylinder) {
-    o.line(2, "cylinder");
-    o.line(3, "diameter", yaml_real(g.cylinder.diameter));
-    o.line(3, "thickness", yaml_real(g.cylinder.thickness));
-    o.line(3, "load_arc", yaml_real(g.cylinder.load_arc));
+    o.line(i + 2, "cylinder");
+    o.line(i + 3, "diameter", yaml_real(g.cylinder.diameter));
+    o.line(i + 3, "thickness", yaml_real(g.cylinder.thickness));
+    o.line(i + 3, "load_arc", yaml_real(g.cylinder.load_arc));
   } else {
-    o.line(2, "box", vec3(g.size));
+    o.line(i + 2, "box", vec3(g.size));
   }
-  o.line(2, "origin", vec3(g.origin));
-  o.line(2, "size_min", yaml_real(g.size_min));
-  o.line(2, "size_max", yaml_real(g.size_max));
-  o.line(2, "grading", yaml_real(g.grading));
-  o.line(2, "seed", std::to_string(g.seed));
+  o.line(i + 2, "origin", vec3(g.origin));
+  if (g.cells) {  // a structured lattice: the reader forbids the sizing keys
+    const auto& c = *g.cells;
+    o.line(i + 2, "cells",
+           "[" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + "]");
+    return;
+  }
+  o.line(i + 2, "size_min", yaml_real(g.size_min));
+  o.line(i + 2, "size_max", yaml_real(g.size_max));
+  o.line(i + 2, "grading", yaml_real(g.grading));
+  o.line(i + 2, "seed", std::to_string(g.seed));
   if (cylinder) return;  // notches are for boxes only (the reader forbids the key)
-  o.line(2, "notches", g.notches.empty() ? "[]" : "");
-  for (const auto& n : g.notches) emit_notch(o, n);
+  o.line(i + 2, "notches", g.notches.empty() ? "[]" : "");
+  for (const auto& n : g.notches) emit_notch(o, n, i);
 }
 
 void emit_material(Lines& o, const MaterialSpec& m) {
@@ -229,6 +237,47 @@ void emit_solid(Lines& o, const SolidSpec& s) {
   if (s.initial_stress) emit_initial_stress(o, *s.initial_stress);
 }
 
+void emit_fluid(Lines& o, const FluidSpec& f) {
+  using Kind = FluidBoundarySpec::Kind;
+  static constexpr const char* kTypes[] = {"no_slip", "velocity", "free_slip", "pressure", "outflow"};
+  o.line(0, "fluid");
+  if (f.mesh) emit_mesh(o, *f.mesh, 1);
+  o.line(1, "density", yaml_real(f.density));
+  o.line(1, "viscosity", yaml_real(f.viscosity));
+  o.line(1, "dt", yaml_real(f.dt));
+  o.line(1, "theta", yaml_real(f.theta));
+  o.line(1, "convection", f.convection ? "true" : "false");
+  o.line(1, "supg", f.supg ? "true" : "false");
+  o.line(1, "coupling", f.coupling == FluidSpec::Coupling::schur_gmres ? "schur_gmres" : "projection");
+  o.line(1, "picard_max_iterations", std::to_string(f.picard_max_iterations));
+  o.line(1, "picard_tolerance", yaml_real(f.picard_tolerance));
+  o.line(1, "on_picard_failure",
+         f.on_picard_failure == FluidSpec::OnPicardFailure::stop ? "stop" : "continue");
+  o.line(1, "velocity_tolerance", yaml_real(f.velocity_tolerance));
+  o.line(1, "velocity_max_iterations", std::to_string(f.velocity_max_iterations));
+  o.line(1, "schur_tolerance", yaml_real(f.schur_tolerance));
+  o.line(1, "schur_max_iterations", std::to_string(f.schur_max_iterations));
+  o.line(1, "schur_restart", std::to_string(f.schur_restart));
+  o.line(1, "pressure_tolerance", yaml_real(f.pressure_tolerance));
+  o.line(1, "pressure_max_iterations", std::to_string(f.pressure_max_iterations));
+  o.line(1, "body_force", vec3(f.body_force));
+  o.line(1, "initial_velocity", vec3(f.initial_velocity));
+  o.line(1, "boundaries");
+  for (const auto& b : f.boundaries) {
+    o.item(2, "surface", quoted(b.surface));
+    o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
+    if (b.kind == Kind::velocity) {
+      o.line(3, "direction", vec3(b.direction));
+      std::string axes;
+      for (int a = 0; a < 3; ++a)
+        if (b.parabolic[a]) axes += std::string(axes.empty() ? "" : ", ") + "xyz"[a];
+      o.line(3, "parabolic", "[" + axes + "]");
+    }
+    if (b.kind == Kind::velocity || b.kind == Kind::pressure) emit_time_function(o, 3, "value", b.function);
+  }
+  o.line(1, "ghia_cavity", f.ghia_cavity ? "true" : "false");
+}
+
 void emit_output(Lines& o, const OutputSpec& out) {
   std::string fields;
   for (const auto& f : out.fields) fields += (fields.empty() ? "" : ", ") + f;
@@ -271,8 +320,9 @@ std::string emit_resolved_yaml(const Scene& scene) {
   o.line(1, "name", quoted(scene.name));
   o.line(1, "description", quoted(scene.description));
   emit_time(o, scene.time);
-  emit_mesh(o, scene.mesh);
+  if (scene.mesh.file || scene.mesh.generate) emit_mesh(o, scene.mesh);
   if (scene.solid) emit_solid(o, *scene.solid);
+  if (scene.fluid) emit_fluid(o, *scene.fluid);
   emit_output(o, scene.output);
   emit_checkpoint(o, scene.checkpoint);
   emit_reference(o, scene.reference);

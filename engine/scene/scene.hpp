@@ -55,6 +55,8 @@ struct MeshGenerateSpec {
   double size_max = 0.0;           // element size far from them [m]
   double grading = 0.5;            // growth of element size per unit distance from a feature [-]
   uint32_t seed = 1;               // generator seed: the same seed gives the same mesh
+  // box only, instead of size_min/size_max: a structured Kuhn lattice of nx x ny x nz cells (6 tets each)
+  std::optional<std::array<int, 3>> cells;
 };
 
 struct MeshSpec {
@@ -168,9 +170,51 @@ struct SolidSpec {
   std::optional<InitialStressSpec> initial_stress;  // absent: stress-free start
 };
 
+// A fluid boundary condition on a named mesh surface (systems/fluid/fluid_solver.hpp BoundaryKind).
+struct FluidBoundarySpec {
+  enum class Kind { no_slip, velocity, free_slip, pressure, outflow };  // fluid::BoundaryKind order
+  Kind kind = Kind::no_slip;
+  std::string surface;
+  std::array<double, 3> direction{};  // velocity: the vector [m/s] `function` scales
+  TimeFunction function;              // velocity: scales `direction` (1 by default); pressure: p [Pa]
+  // velocity: axes along which the value falls parabolically to 0 at the surface's bounding box (peak 1 in
+  // the middle): 4 (x - lo)(hi - x) / (hi - lo)^2 per axis; none: uniform.
+  std::array<bool, 3> parabolic{};
+};
+
+// Incompressible Navier-Stokes (systems/fluid, docs/fluid.md) on its own mesh.
+struct FluidSpec {
+  enum class Coupling { schur_gmres, projection };  // fluid::PressureCoupling order
+  enum class OnPicardFailure { stop, continue_run };
+  std::optional<MeshSpec> mesh;  // absent: the top-level mesh
+  double density = 1.0;          // [kg/m^3]
+  double viscosity = 0.0;        // dynamic viscosity [Pa s]
+  double dt = 0.0;               // fluid time step [s]
+  double theta = 1.0;            // 1 backward Euler, 0.5 Crank-Nicolson
+  bool convection = true;
+  bool supg = true;
+  Coupling coupling = Coupling::schur_gmres;
+  int picard_max_iterations = 20;
+  double picard_tolerance = 1e-6;
+  OnPicardFailure on_picard_failure = OnPicardFailure::stop;
+  double velocity_tolerance = 1e-10;
+  int velocity_max_iterations = 2000;
+  double schur_tolerance = 1e-8;
+  int schur_max_iterations = 200;
+  int schur_restart = 50;
+  double pressure_tolerance = 1e-8;
+  int pressure_max_iterations = 200;
+  std::array<double, 3> body_force{};        // [N/m^3]
+  std::array<double, 3> initial_velocity{};  // [m/s], then the boundary values on Dirichlet nodes
+  std::vector<FluidBoundarySpec> boundaries;
+  // Compare the steady centre lines with Ghia et al. (1982) Re = 100 (a unit-square cavity, lid speed 1):
+  // summary metrics.fluid.ghia_max_error.
+  bool ghia_cavity = false;
+};
+
 struct TimeSpec {
   double end = 0.0;                // simulated end time [s]
-  std::optional<double> dt;        // requested solid step [s]; absent: safety x stable step
+  std::optional<double> dt;        // requested step [s]; absent: safety x stable step, or fluid.dt
   double safety = 0.5;             // fraction of the stable step used when dt is absent (0, 1]
   bool allow_unstable_dt = false;  // run a dt above the stable step on purpose (stability studies)
 };
@@ -204,8 +248,9 @@ struct Scene {
   std::string description;
   std::string source_file;  // the file it was read from ("" when built in code)
   TimeSpec time;
-  MeshSpec mesh;
+  MeshSpec mesh;                   // neither file nor generate when absent (a fluid scene with fluid.mesh)
   std::optional<SolidSpec> solid;  // absent: no solid systems in the run
+  std::optional<FluidSpec> fluid;  // absent: no fluid; not together with solid (the coupling is later)
   OutputSpec output;
   CheckpointSpec checkpoint;
   std::vector<ReferenceMetricSpec> reference;  // empty: the scene names no error metrics

@@ -14,6 +14,8 @@ TimeSpec read_time_section(MapReader& sec);
 // Relative mesh.file paths are resolved against `base_dir` (the scene file's folder).
 MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir);
 SolidSpec read_solid_section(MapReader& sec);
+// fluid.mesh paths resolve against base_dir like mesh.file (read_fluid_section.cpp).
+FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir);
 // Parts of the solid section (read_fracture_keys.cpp).
 FractureMaterialSpec read_fracture_material(MapReader& sec, double young);
 FractureSpec read_fracture_section(MapReader& sec);

@@ -82,7 +82,8 @@ class MapReader {
   bool has(std::string_view key) const;  // present in the file (null values count)
   bool ok(std::string_view key) const;   // read without a diagnostic
   std::string key_path(std::string_view key) const;
-  SourceLocation where(std::string_view key) const;  // the value's location, else the section's
+  std::string doc_key_path(std::string_view key) const;  // without list indices, as the docs name it
+  SourceLocation where(std::string_view key) const;      // the value's location, else the section's
   const SourceLocation& where() const { return where_; }
   std::string found(std::string_view key) const;  // describe_found of the value
   ReadContext& context() { return *ctx_; }
@@ -106,7 +107,9 @@ class MapReader {
                              std::optional<TimeFunction> fallback);
   // A nested mapping; a null value reads as an empty one. Not a mapping, or required and absent:
   // reported here, and the returned reader stays silent so the mistake is not repeated per key.
-  MapReader section(std::string_view key, bool required);
+  // `doc_path`: the documented path of its keys when they are another section's (fluid.mesh reads as mesh).
+  MapReader section(std::string_view key, bool required, const std::string* doc_path = nullptr);
+  const std::string& path() const { return path_; }
   // A list of mappings. Absent: empty (an error when min_items > 0).
   std::vector<MapReader> section_list(std::string_view key, size_t min_items);
 

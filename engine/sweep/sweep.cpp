@@ -231,8 +231,7 @@ SweepResult run_sweep(const SweepOptions& o) {
       }
       row.status = "done";
       row.steps = r.steps;
-      row.tets =
-          sim.world().store.has("solid_tet") ? int64_t(sim.world().store.table("solid_tet").size()) : 0;
+      row.tets = int64_t(sim.world().mesh.tets.size());  // the solid's or the fluid's mesh
     } catch (const Error& e) {
       row.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       row.status = std::string("failed: ") + e.what();

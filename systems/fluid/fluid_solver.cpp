@@ -554,4 +554,30 @@ FluidStepReport FluidSolver::step() {
   return rep;
 }
 
+void FluidSolver::restore_state(double t, std::span<const double> u, std::span<const double> p,
+                                std::span<const double> pressure_matrix_coefficients,
+                                std::span<const double> previous_velocity) {
+  if (u.size() != u_.size() || p.size() != p_.size() || pressure_matrix_coefficients.size() != pcoef_.size())
+    throw std::invalid_argument("FluidSolver::restore_state: sizes do not match the mesh");
+  time_ = t;
+  std::copy(u.begin(), u.end(), u_.begin());
+  std::copy(p.begin(), p.end(), p_.begin());
+  have_previous_ = !previous_velocity.empty();
+  if (have_previous_) {
+    if (previous_velocity.size() != u_old_.size())
+      throw std::invalid_argument("FluidSolver::restore_state: previous velocity size does not match");
+    std::copy(previous_velocity.begin(), previous_velocity.end(), u_old_.begin());
+  }
+  apply_velocity_bc(time_);
+  bool assembled = false;
+  for (double c : pressure_matrix_coefficients) assembled = assembled || c != 0.0;
+  if (assembled) {
+    std::copy(pressure_matrix_coefficients.begin(), pressure_matrix_coefficients.end(), pcoef_.begin());
+    assemble_pressure_matrix();
+  } else {
+    std::fill(pcoef_matrix_.begin(), pcoef_matrix_.end(), 0.0);
+    pressure_matrix_stale_ = true;
+  }
+}
+
 }  // namespace rift::fluid

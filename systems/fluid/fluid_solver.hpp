@@ -124,6 +124,19 @@ class FluidSolver {
 
   FluidStepReport step();
 
+  // Checkpoint/restart. Besides u and p a step depends on the coefficients the pressure matrix (the
+  // preconditioner, rebuilt only when they drift) was last assembled with: one per tet, all zero before
+  // the first assembly. restore_state with what velocity(), pressure() and these held at time t makes
+  // the next step bitwise the one the saving run took.
+  std::span<const double> pressure_matrix_coefficients() const { return pcoef_matrix_; }
+  // With picard_extrapolate the next step also depends on u^{n-1}: previous_velocity() (valid when
+  // has_previous()), restored by passing it (empty: none, as after set_velocity).
+  void restore_state(double t, std::span<const double> u, std::span<const double> p,
+                     std::span<const double> pressure_matrix_coefficients,
+                     std::span<const double> previous_velocity = {});
+  std::span<const double> previous_velocity() const { return u_old_; }
+  bool has_previous() const { return have_previous_; }
+
   double time() const { return time_; }
   std::span<const double> velocity() const { return u_; }  // 3 per node
   std::span<const double> pressure() const { return p_; }  // 1 per node

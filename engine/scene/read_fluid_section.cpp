@@ -1,0 +1,106 @@
+// fluid: incompressible Navier-Stokes (systems/fluid): material, time scheme, solver controls, body
+// force, initial velocity and boundary conditions on named mesh surfaces, optionally its own mesh.
+#include "engine/scene/scene_sections.hpp"
+
+namespace rift {
+namespace {
+
+// FluidBoundarySpec::Kind order.
+constexpr std::array<std::string_view, 5> kBoundaryTypes{"no_slip", "velocity", "free_slip", "pressure",
+                                                         "outflow"};
+constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
+constexpr std::array<std::string_view, 2> kSchemes{"backward_euler", "crank_nicolson"};
+constexpr std::array<std::string_view, 2> kCouplings{"schur_gmres", "projection"};
+constexpr std::array<std::string_view, 2> kOnFailure{"stop", "continue"};
+
+// Keys that apply to one boundary type only are forbidden for the others (as in the solid section).
+FluidBoundarySpec read_boundary(MapReader& b) {
+  using Kind = FluidBoundarySpec::Kind;
+  FluidBoundarySpec bc;
+  bc.surface = b.string("surface", std::nullopt);
+  bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
+  if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
+    for (auto key : {"direction", "value", "parabolic"}) b.declare(key);
+    b.finish();
+    return bc;
+  }
+  const std::string for_type = "for type " + std::string(kBoundaryTypes[static_cast<size_t>(bc.kind)]);
+  TimeFunction one;
+  one.value = 1.0;
+  if (bc.kind == Kind::velocity) {
+    bc.direction = b.vec3("direction", any_real("m/s"), std::nullopt);
+    bc.function = b.time_function("value", "", one);  // dimensionless: scales `direction`
+    for (size_t axis : b.choice_list("parabolic", kAxes, {}, 0)) bc.parabolic[axis] = true;
+  } else {
+    b.forbid("direction", for_type);
+    b.forbid("parabolic", for_type);
+    if (bc.kind == Kind::pressure)
+      bc.function = b.time_function("value", "Pa", std::nullopt);
+    else
+      b.forbid("value", for_type + (bc.kind == Kind::outflow ? " (p = 0 there)" : ""));
+  }
+  b.finish();
+  return bc;
+}
+
+}  // namespace
+
+FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
+  FluidSpec f;
+  if (sec.has("mesh")) {
+    static const std::string kMeshDoc = "mesh";  // the same keys as the top-level mesh section
+    MapReader m = sec.section("mesh", false, &kMeshDoc);
+    f.mesh = read_mesh_section(m, base_dir);
+  } else {
+    sec.declare("mesh");
+  }
+  f.density = sec.real("density", positive("kg/m^3"), std::nullopt);
+  f.viscosity = sec.real("viscosity", positive("Pa s"), std::nullopt);
+  f.dt = sec.real("dt", positive("s"), std::nullopt);
+  // theta or scheme, not both.
+  if (sec.has("theta") && sec.has("scheme")) {
+    sec.error("scheme", "either theta or scheme, not both");
+    sec.declare("theta");
+    sec.declare("scheme");
+  } else if (sec.has("theta")) {
+    f.theta = sec.real("theta", RealRule{"", 0.5, 1.0, false, false}, 1.0);
+    sec.declare("scheme");
+  } else {
+    f.theta = sec.choice("scheme", kSchemes, 0) == 0 ? 1.0 : 0.5;
+    sec.declare("theta");
+  }
+  f.convection = sec.boolean("convection", true);
+  f.supg = sec.boolean("supg", true);
+  f.coupling = static_cast<FluidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
+  f.picard_max_iterations = static_cast<int>(sec.integer("picard_max_iterations", IntRule{1, 1000}, 20));
+  f.picard_tolerance = sec.real("picard_tolerance", positive(""), 1e-6);
+  f.on_picard_failure =
+      static_cast<FluidSpec::OnPicardFailure>(sec.choice("on_picard_failure", kOnFailure, 0));
+  f.velocity_tolerance = sec.real("velocity_tolerance", RealRule{"", 0.0, 1.0, true, true}, 1e-10);
+  f.velocity_max_iterations =
+      static_cast<int>(sec.integer("velocity_max_iterations", IntRule{1, 1000000}, 2000));
+  f.schur_tolerance = sec.real("schur_tolerance", RealRule{"", 0.0, 1.0, true, true}, 1e-8);
+  f.schur_max_iterations = static_cast<int>(sec.integer("schur_max_iterations", IntRule{1, 100000}, 200));
+  f.schur_restart = static_cast<int>(sec.integer("schur_restart", IntRule{1, 1000}, 50));
+  f.pressure_tolerance = sec.real("pressure_tolerance", RealRule{"", 0.0, 1.0, true, true}, 1e-8);
+  f.pressure_max_iterations =
+      static_cast<int>(sec.integer("pressure_max_iterations", IntRule{1, 100000}, 200));
+  f.body_force = sec.vec3("body_force", any_real("N/m^3"), std::array<double, 3>{});
+  f.initial_velocity = sec.vec3("initial_velocity", any_real("m/s"), std::array<double, 3>{});
+  auto boundaries = sec.section_list("boundaries", 1);
+  for (auto& b : boundaries) f.boundaries.push_back(read_boundary(b));
+  // One condition per surface: two on one surface would silently let the later one win.
+  for (size_t i = 0; i < boundaries.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (boundaries[i].ok("surface") && boundaries[j].ok("surface") &&
+          f.boundaries[i].surface == f.boundaries[j].surface) {
+        boundaries[i].error("surface", "a surface no other fluid boundary names (also in " +
+                                           sec.key_path("boundaries") + "[" + std::to_string(j) + "])");
+        break;
+      }
+  f.ghia_cavity = sec.boolean("ghia_cavity", false);
+  sec.finish();
+  return f;
+}
+
+}  // namespace rift

@@ -1,0 +1,394 @@
+#include "systems/fluid/fluid_model.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/core/error.hpp"
+#include "systems/fluid/fluid_tables.hpp"
+
+namespace rift {
+
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "(none)" : out;
+}
+
+bool wants(const std::vector<std::string>& fields, const char* name) {
+  return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
+}
+
+std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const TetMesh& mesh) {
+  std::vector<fluid::FluidBoundary> out;
+  for (size_t i = 0; i < spec.boundaries.size(); ++i) {
+    const FluidBoundarySpec& b = spec.boundaries[i];
+    if (mesh.surface_index(b.surface) < 0)
+      throw Error("fluid.boundaries[" + std::to_string(i) + "].surface: the mesh has no surface '" +
+                  b.surface + "'; its surfaces are: " + join(mesh.surface_names));
+    fluid::FluidBoundary fb;
+    fb.surface = b.surface;
+    fb.kind = static_cast<fluid::BoundaryKind>(b.kind);
+    if (b.kind == FluidBoundarySpec::Kind::velocity) {
+      // The surface's bounding box, for a parabolic profile.
+      std::array<double, 3> lo{}, hi{};
+      lo.fill(std::numeric_limits<double>::infinity());
+      hi.fill(-std::numeric_limits<double>::infinity());
+      const int32_t s = mesh.surface_index(b.surface);
+      for (size_t t = 0; t < mesh.triangles.size(); ++t)
+        if (mesh.triangle_surface[t] == s)
+          for (int32_t n : mesh.triangles[t])
+            for (int d = 0; d < 3; ++d) {
+              lo[d] = std::min(lo[d], mesh.nodes[n][d]);
+              hi[d] = std::max(hi[d], mesh.nodes[n][d]);
+            }
+      for (int d = 0; d < 3; ++d)
+        if (b.parabolic[d] && !(hi[d] > lo[d]))
+          throw Error("fluid.boundaries[" + std::to_string(i) + "].parabolic: surface '" + b.surface +
+                      "' has no extent along " + "xyz"[d] + ", so no profile across it");
+      fb.velocity = [dir = b.direction, f = b.function, axes = b.parabolic, lo, hi](const fluid::Vec3& x,
+                                                                                    double t) {
+        double s = f(t);
+        for (int d = 0; d < 3; ++d)
+          if (axes[d]) s *= 4.0 * (x[d] - lo[d]) * (hi[d] - x[d]) / ((hi[d] - lo[d]) * (hi[d] - lo[d]));
+        return fluid::Vec3{s * dir[0], s * dir[1], s * dir[2]};
+      };
+    } else if (b.kind == FluidBoundarySpec::Kind::pressure) {
+      fb.pressure = [f = b.function](const fluid::Vec3&, double t) { return f(t); };
+    }
+    out.push_back(std::move(fb));
+  }
+  return out;
+}
+
+fluid::FluidSettings settings_for(const FluidSpec& spec) {
+  fluid::FluidSettings s;
+  s.rho = spec.density;
+  s.mu = spec.viscosity;
+  s.dt = spec.dt;
+  s.theta = spec.theta;
+  s.convection = spec.convection;
+  s.supg = spec.supg;
+  s.coupling = static_cast<fluid::PressureCoupling>(spec.coupling);
+  s.picard_max_iterations = spec.picard_max_iterations;
+  s.picard_tol = spec.picard_tolerance;
+  s.velocity_rel_tol = spec.velocity_tolerance;
+  s.velocity_max_iterations = spec.velocity_max_iterations;
+  s.schur_rel_tol = spec.schur_tolerance;
+  s.schur_max_iterations = spec.schur_max_iterations;
+  s.schur_restart = spec.schur_restart;
+  s.pressure_solver.rel_tol = spec.pressure_tolerance;
+  s.pressure_solver.max_iterations = spec.pressure_max_iterations;
+  return s;
+}
+
+// Ghia, Ghia & Shin (1982), Re = 100: u on x = 1/2 at kGhiaY, v on y = 1/2 at kGhiaX (17 points each,
+// the two ends being the walls).
+constexpr double kGhiaY[17] = {1.0,    0.9766, 0.9688, 0.9609, 0.9531, 0.8516, 0.7344, 0.6172, 0.5,
+                               0.4531, 0.2813, 0.1719, 0.1016, 0.0703, 0.0625, 0.0547, 0.0};
+constexpr double kGhiaU[17] = {1.0,      0.84123,  0.78871,  0.73722,  0.68717,  0.23151,
+                               0.00332,  -0.13641, -0.20581, -0.2109,  -0.15662, -0.1015,
+                               -0.06434, -0.04775, -0.04192, -0.03717, 0.0};
+constexpr double kGhiaX[17] = {1.0,    0.9688, 0.9609, 0.9531, 0.9453, 0.9063, 0.8594, 0.8047, 0.5,
+                               0.2344, 0.2266, 0.1563, 0.0938, 0.0781, 0.0703, 0.0625, 0.0};
+constexpr double kGhiaV[17] = {0.0,      -0.05906, -0.07391, -0.08864, -0.10313, -0.16914,
+                               -0.22445, -0.24533, 0.05454,  0.17527,  0.17507,  0.16077,
+                               0.12317,  0.1089,   0.10091,  0.09233,  0.0};
+
+}  // namespace
+
+FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec)
+    : store_(store), spec_(spec) {
+  auto bcs = boundaries_for(spec, mesh);
+  try {
+    solver_ = std::make_unique<fluid::FluidSolver>(mesh, settings_for(spec), std::move(bcs));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(std::string("fluid: ") + e.what());
+  }
+  const auto v0 = spec.initial_velocity;
+  solver_->set_velocity([v0](const fluid::Vec3&, double) { return v0; });
+  if (spec.body_force != std::array<double, 3>{}) {
+    const auto f = spec.body_force;
+    solver_->set_body_force([f](const fluid::Vec3&, double) { return f; });
+  }
+  const size_t nn = solver_->node_count(), nt = solver_->volumes().size();
+  Table& nodes = store_.add_table(fluid::node_table);
+  nodes.add<double>("x", 3);
+  nodes.add<double>("velocity", 3);
+  nodes.add<double>("pressure", 1);
+  nodes.add<double>("previous_velocity", 3);
+  nodes.resize(nn);
+  std::copy(solver_->nodes().begin(), solver_->nodes().end(), nodes.span<double>("x").begin());
+  std::copy(solver_->velocity().begin(), solver_->velocity().end(), nodes.span<double>("velocity").begin());
+  Table& tets = store_.add_table(fluid::tet_table);
+  tets.add<int32_t>("nodes", 4);
+  tets.add<double>("pressure_matrix_coefficient", 1);
+  tets.resize(nt);
+  std::copy(solver_->tets().begin(), solver_->tets().end(), tets.span<int32_t>("nodes").begin());
+  Table& step = store_.add_table(fluid::step_table);
+  for (const char* c : fluid::step_columns) step.add<double>(c, 1);
+  step.add<double>("has_previous", 1);
+  step.resize(1);
+  step_ = std::make_unique<FluidStepSystem>(store_, *solver_);
+
+  // P1 gradients and sizes for the per-cell output fields.
+  const auto x = solver_->nodes();
+  const auto conn = solver_->tets();
+  grad_.assign(12 * nt, 0.0);
+  h_.assign(nt, 0.0);
+  node_volume_.assign(nn, 0.0);
+  for (size_t t = 0; t < nt; ++t) {
+    const int32_t* n = &conn[4 * t];
+    double e[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 3; ++d) e[a][d] = x[3 * n[a + 1] + d] - x[3 * n[0] + d];
+    // Rows of inverse(E^T) are grad N1..N3 for E = [e1 e2 e3] (columns).
+    const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                       e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                       e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+    double g[4][3];
+    for (int d = 0; d < 3; ++d) {
+      const int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+      for (int a = 0; a < 3; ++a) {
+        const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
+        g[a + 1][d] = (e[a1][d1] * e[a2][d2] - e[a1][d2] * e[a2][d1]) / det;
+      }
+    }
+    for (int d = 0; d < 3; ++d) g[0][d] = -(g[1][d] + g[2][d] + g[3][d]);
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) grad_[12 * t + 3 * a + d] = g[a][d];
+    double h2 = 0.0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        double l2 = 0.0;
+        for (int d = 0; d < 3; ++d) l2 += std::pow(x[3 * n[a] + d] - x[3 * n[b] + d], 2);
+        h2 = std::max(h2, l2);
+      }
+    h_[t] = std::sqrt(h2);
+    for (int a = 0; a < 4; ++a) node_volume_[n[a]] += 0.25 * solver_->volumes()[t];
+  }
+}
+
+FluidModel::~FluidModel() = default;
+
+void FluidModel::cell_fields() {
+  const auto u = solver_->velocity();
+  const auto conn = solver_->tets();
+  const size_t nt = h_.size();
+  divergence_.assign(nt, 0.0);
+  cfl_.assign(nt, 0.0);
+  for (size_t t = 0; t < nt; ++t) {
+    double div = 0.0, ubar[3] = {0, 0, 0};
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) {
+        const double ua = u[3 * static_cast<size_t>(conn[4 * t + a]) + d];
+        div += grad_[12 * t + 3 * a + d] * ua;
+        ubar[d] += 0.25 * ua;
+      }
+    divergence_[t] = div;
+    cfl_[t] = std::sqrt(ubar[0] * ubar[0] + ubar[1] * ubar[1] + ubar[2] * ubar[2]) * spec_.dt / h_[t];
+  }
+}
+
+double FluidModel::kinetic_energy() const {
+  const auto u = solver_->velocity();
+  double e = 0.0;
+  for (size_t n = 0; n < node_volume_.size(); ++n)
+    e += node_volume_[n] * (u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
+  return 0.5 * spec_.density * e;
+}
+
+std::optional<std::string> FluidModel::check_health(const StepContext& after) {
+  const fluid::FluidStepReport& r = step_->last_report();
+  const auto u = solver_->velocity();
+  const auto p = solver_->pressure();
+  const auto x = solver_->nodes();
+  size_t bad = 0, first = 0;
+  for (size_t n = 0; n < p.size(); ++n)
+    if (!std::isfinite(p[n]) || !std::isfinite(u[3 * n]) || !std::isfinite(u[3 * n + 1]) ||
+        !std::isfinite(u[3 * n + 2]))
+      if (bad++ == 0) first = n;
+  const std::string advice =
+      "What to change: lower fluid.dt (the step's CFL was " + fmt::format("{:.3g}", r.cfl) +
+      "), use scheme: backward_euler and supg: true for convection-dominated flow, refine the mesh, or check "
+      "the boundary conditions: their magnitudes, and that they admit a solution (an outflow or pressure "
+      "surface for a driven inflow).";
+  if (bad > 0)
+    return fmt::format(
+        "{} fluid nodes have a non-finite velocity or pressure after step {} (t = {:.6g} s); first: node {} "
+        "at ({:.4g}, {:.4g}, {:.4g}) m. Likely cause: the step diverged (a dt too large for the flow), or a "
+        "boundary value, body force or initial velocity so large that the arithmetic overflowed. {}",
+        bad, after.step, after.time, first, x[3 * first], x[3 * first + 1], x[3 * first + 2], advice);
+  if (!r.converged && spec_.on_picard_failure == FluidSpec::OnPicardFailure::stop) {
+    cell_fields();
+    const size_t worst = static_cast<size_t>(std::max_element(cfl_.begin(), cfl_.end()) - cfl_.begin());
+    const auto conn = solver_->tets();
+    double c[3] = {0, 0, 0};
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) c[d] += 0.25 * x[3 * static_cast<size_t>(conn[4 * worst + a]) + d];
+    return fmt::format(
+        "the fluid's Picard iteration did not converge in step {} (t = {:.6g} s): after {} iterations "
+        "(fluid.picard_max_iterations) the relative changes are {:.3g} (velocity) and {:.3g} (pressure), "
+        "fluid.picard_tolerance is {:.3g}; the largest CFL number {:.3g} is at ({:.4g}, {:.4g}, {:.4g}) m. "
+        "Likely cause: strong convection for this step (CFL > 1) or a sudden change of a boundary value. "
+        "{} Or raise fluid.picard_max_iterations / fluid.picard_tolerance, or set fluid.on_picard_failure: "
+        "continue when a fixed number of iterations per step is meant (iterated projection).",
+        after.step, after.time, r.picard_iterations, r.velocity_change, r.pressure_change,
+        spec_.picard_tolerance, cfl_[worst], c[0], c[1], c[2], advice);
+  }
+  return std::nullopt;
+}
+
+void FluidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
+  cell_fields();
+  const Table& nodes = store_.table(fluid::node_table);
+  const Table& tets = store_.table(fluid::tet_table);
+  XdmfGrid g{"fluid",
+             Topology::tetrahedron,
+             nodes.span<double>("x").data(),
+             nodes.size(),
+             tets.span<int32_t>("nodes").data(),
+             tets.size(),
+             0,
+             false,
+             {}};
+  if (wants(fields, "velocity"))
+    g.fields.push_back(
+        {"velocity", Center::node, 3, ElementType::f64, nodes.span<double>("velocity").data(), nodes.size()});
+  if (wants(fields, "pressure"))
+    g.fields.push_back(
+        {"pressure", Center::node, 1, ElementType::f64, nodes.span<double>("pressure").data(), nodes.size()});
+  if (wants(fields, "divergence"))
+    g.fields.push_back({"divergence", Center::cell, 1, ElementType::f64, divergence_.data(), tets.size()});
+  if (wants(fields, "cfl"))
+    g.fields.push_back({"cfl", Center::cell, 1, ElementType::f64, cfl_.data(), tets.size()});
+  grids.push_back(std::move(g));
+}
+
+void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& row) {
+  const Table& step = store_.table(fluid::step_table);
+  auto v = [&](const char* c) { return step.span<double>(c)[0]; };
+  row.emplace_back("fluid_picard_iterations", v("picard_iterations"));
+  row.emplace_back("fluid_picard_converged", v("converged"));
+  row.emplace_back("fluid_velocity_iterations", v("velocity_iterations"));
+  row.emplace_back("fluid_schur_iterations", v("schur_iterations"));
+  row.emplace_back("fluid_pressure_iterations", v("pressure_iterations"));
+  row.emplace_back("fluid_divergence_l2", v("divergence_l2"));
+  row.emplace_back("fluid_divergence_max", v("divergence_max"));
+  row.emplace_back("fluid_cfl", v("cfl"));
+  row.emplace_back("fluid_kinetic_energy", kinetic_energy());
+  const auto u = solver_->velocity();
+  double speed2 = 0.0;
+  for (size_t n = 0; n < u.size() / 3; ++n)
+    speed2 =
+        std::max(speed2, u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
+  row.emplace_back("fluid_max_speed", std::sqrt(speed2));
+  const auto p = solver_->pressure();
+  double pmin = p.empty() ? 0.0 : p[0], pmax = pmin;
+  for (double q : p) {
+    pmin = std::min(pmin, q);
+    pmax = std::max(pmax, q);
+  }
+  row.emplace_back("fluid_pressure_min", pmin);
+  row.emplace_back("fluid_pressure_max", pmax);
+}
+
+void FluidModel::summarize(nlohmann::json& summary) const {
+  const Table& step = store_.table(fluid::step_table);
+  auto v = [&](const char* c) { return step.span<double>(c)[0]; };
+  auto& s = summary["fluid"];
+  s["nodes"] = solver_->node_count();
+  s["tets"] = solver_->volumes().size();
+  s["dt"] = spec_.dt;
+  s["kinetic_energy"] = kinetic_energy();
+  s["picard_failures"] = static_cast<int64_t>(v("picard_failures"));
+  s["max_cfl"] = v("max_cfl");
+  s["max_divergence"] = v("max_divergence");
+  s["last_step"] = {{"picard_iterations", static_cast<int64_t>(v("picard_iterations"))},
+                    {"converged", v("converged") != 0.0},
+                    {"velocity_iterations", static_cast<int64_t>(v("velocity_iterations"))},
+                    {"schur_iterations", static_cast<int64_t>(v("schur_iterations"))},
+                    {"pressure_iterations", static_cast<int64_t>(v("pressure_iterations"))},
+                    {"velocity_change", v("velocity_change")},
+                    {"divergence_l2", v("divergence_l2")},
+                    {"divergence_max", v("divergence_max")},
+                    {"cfl", v("cfl")}};
+  if (spec_.ghia_cavity) {
+    const GhiaErrors g = ghia_errors();
+    s["ghia_max_du"] = g.max_du;
+    s["ghia_max_dv"] = g.max_dv;
+    s["ghia_max_error"] = g.max();
+  }
+}
+
+void FluidModel::restored(const StepContext& at) {
+  const Table& nodes = store_.table(fluid::node_table);
+  const bool previous = store_.table(fluid::step_table).span<const double>("has_previous")[0] != 0.0;
+  solver_->restore_state(
+      at.time, nodes.span<double>("velocity"), nodes.span<double>("pressure"),
+      store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient"),
+      previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{});
+}
+
+GhiaErrors FluidModel::ghia_errors() const {
+  const auto x = solver_->nodes();
+  const auto u = solver_->velocity();
+  const auto conn = solver_->tets();
+  const size_t nn = solver_->node_count(), nt = conn.size() / 4;
+  std::array<double, 3> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for (size_t n = 0; n < nn; ++n)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], x[3 * n + d]);
+      hi[d] = std::max(hi[d], x[3 * n + d]);
+    }
+  double lid = 0.0;
+  for (const auto& b : spec_.boundaries)
+    if (b.kind == FluidBoundarySpec::Kind::velocity) {
+      const double s = b.function(solver_->time());
+      lid = std::hypot(s * b.direction[0], s * b.direction[1], s * b.direction[2]);
+      break;
+    }
+  if (lid == 0.0) lid = 1.0;
+  // P1 interpolation at a point: the tet whose barycentric coordinates are all >= -eps.
+  auto sample = [&](const std::array<double, 3>& p, int comp) {
+    double best = -std::numeric_limits<double>::infinity(), value = 0.0;
+    for (size_t t = 0; t < nt; ++t) {
+      const int32_t* n = &conn[4 * t];
+      double lam[4], lmin = 1.0;
+      double sum = 0.0;
+      for (int a = 1; a < 4; ++a) {
+        double l = 0.0;
+        for (int d = 0; d < 3; ++d) l += grad_[12 * t + 3 * a + d] * (p[d] - x[3 * n[0] + d]);
+        lam[a] = l;
+        sum += l;
+      }
+      lam[0] = 1.0 - sum;
+      for (double l : lam) lmin = std::min(lmin, l);
+      if (lmin > best) {
+        best = lmin;
+        value = 0.0;
+        for (int a = 0; a < 4; ++a) value += lam[a] * u[3 * static_cast<size_t>(n[a]) + comp];
+        if (lmin >= -1e-12) break;
+      }
+    }
+    return value;
+  };
+  GhiaErrors e;
+  for (int k = 1; k < 16; ++k) {
+    const std::array<double, 3> pu{lo[0] + 0.5 * (hi[0] - lo[0]), lo[1] + kGhiaY[k] * (hi[1] - lo[1]), lo[2]};
+    e.max_du = std::max(e.max_du, std::abs(sample(pu, 0) / lid - kGhiaU[k]));
+    const std::array<double, 3> pv{lo[0] + kGhiaX[k] * (hi[0] - lo[0]), lo[1] + 0.5 * (hi[1] - lo[1]), lo[2]};
+    e.max_dv = std::max(e.max_dv, std::abs(sample(pv, 1) / lid - kGhiaV[k]));
+  }
+  return e;
+}
+
+}  // namespace rift

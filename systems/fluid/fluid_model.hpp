@@ -1,0 +1,60 @@
+#pragma once
+// The fluid in a run: a FluidSolver (incompressible Navier-Stokes, docs/fluid.md) on its own mesh, built
+// from the scene's fluid section, stepped by FluidStepSystem with the fixed step fluid.dt. Its state lives
+// in the fluid tables (fluid_tables.hpp) so outputs, the state hash and checkpoints cover it; restored()
+// hands a checkpoint's state back to the solver so a restart continues bit for bit.
+//
+// Outputs: the grid "fluid" (velocity, pressure per node; divergence, cfl per cell), time-series columns
+// fluid_*, summary metrics.fluid. Health: non-finite velocity or pressure, or (on_picard_failure: stop) a
+// step whose Picard iteration did not converge, stops the run with a diagnosis.
+#include <memory>
+
+#include "engine/core/table.hpp"
+#include "engine/mesh/tet_mesh.hpp"
+#include "engine/model.hpp"
+#include "engine/scene/scene.hpp"
+#include "systems/fluid/fluid_solver.hpp"
+#include "systems/fluid/fluid_step_system.hpp"
+
+namespace rift {
+
+// Centre-line errors against Ghia et al. (1982), Re = 100, on a unit-square cavity.
+struct GhiaErrors {
+  double max_du = 0.0, max_dv = 0.0;  // max over the table's 15 interior points, in units of the lid speed
+  double max() const { return std::max(max_du, max_dv); }
+};
+
+class FluidModel : public Model {
+ public:
+  // Throws rift::Error naming the scene key when the scene and the mesh disagree (unknown surface, a
+  // free-slip surface that is not an axis-aligned plane, ...).
+  FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec);
+  ~FluidModel() override;
+
+  std::string name() const override { return "fluid"; }
+  std::vector<System*> systems() override { return {step_.get()}; }
+  std::optional<double> required_dt() const override { return spec_.dt; }
+  std::optional<std::string> check_health(const StepContext& after) override;
+  void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
+  void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
+  void summarize(nlohmann::json& summary) const override;
+  void restored(const StepContext& at) override;
+
+  const fluid::FluidSolver& solver() const { return *solver_; }
+  double kinetic_energy() const;  // 1/2 rho sum_n V_n |u_n|^2 (lumped) [J]
+  // The centre lines x = 1/2 (u) and y = 1/2 (v) of the mesh's bounding box at its zmin plane, lengths
+  // scaled to the unit square and velocities by the speed of the first velocity boundary.
+  GhiaErrors ghia_errors() const;
+
+ private:
+  void cell_fields();  // divergence_ and cfl_ from the current velocity
+
+  Store& store_;
+  FluidSpec spec_;
+  std::unique_ptr<fluid::FluidSolver> solver_;
+  std::unique_ptr<FluidStepSystem> step_;
+  std::vector<double> grad_, h_, node_volume_;  // P1 gradients (12 per tet), longest edge, lumped volume
+  std::vector<double> divergence_, cfl_;        // output scratch
+};
+
+}  // namespace rift

@@ -1,0 +1,58 @@
+#include "systems/fluid/fluid_step_system.hpp"
+
+#include <algorithm>
+
+#include "systems/fluid/fluid_tables.hpp"
+
+namespace rift {
+
+Access FluidStepSystem::access() const {
+  using fluid::col;
+  Access a;
+  a.writes = {col(fluid::node_table, "velocity"), col(fluid::node_table, "pressure"),
+              col(fluid::node_table, "previous_velocity"),
+              col(fluid::tet_table, "pressure_matrix_coefficient")};
+  for (const char* c : fluid::step_columns) a.writes.push_back(col(fluid::step_table, c));
+  a.writes.push_back(col(fluid::step_table, "has_previous"));
+  return a;
+}
+
+void FluidStepSystem::run(const StepContext& ctx) {
+  // The run's clock is authoritative (t = step x dt): no drift from summing dt, and a restart starts
+  // from the same time bit for bit.
+  solver_.set_time(ctx.time);
+  last_ = solver_.step();
+  Table& nodes = store_.table(fluid::node_table);
+  const auto u = solver_.velocity();
+  const auto p = solver_.pressure();
+  const auto c = solver_.pressure_matrix_coefficients();
+  std::copy(u.begin(), u.end(), nodes.span<double>("velocity").begin());
+  std::copy(p.begin(), p.end(), nodes.span<double>("pressure").begin());
+  // u^{n-1} of the next step's extrapolated start (FluidSettings::picard_extrapolate): run state.
+  const auto u_prev = solver_.previous_velocity();
+  std::copy(u_prev.begin(), u_prev.end(), nodes.span<double>("previous_velocity").begin());
+  store_.table(fluid::step_table).span<double>("has_previous")[0] = solver_.has_previous() ? 1.0 : 0.0;
+  std::copy(c.begin(), c.end(),
+            store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient").begin());
+  Table& step = store_.table(fluid::step_table);
+  const fluid::FluidStepReport& r = last_;
+  const double values[] = {static_cast<double>(r.picard_iterations),
+                           r.converged ? 1.0 : 0.0,
+                           static_cast<double>(r.velocity_iterations),
+                           static_cast<double>(r.schur_iterations),
+                           static_cast<double>(r.pressure_iterations),
+                           static_cast<double>(r.amg_setups),
+                           r.velocity_change,
+                           r.pressure_change,
+                           r.divergence_l2,
+                           r.divergence_max,
+                           r.cfl};
+  for (size_t i = 0; i < std::size(values); ++i) step.span<double>(fluid::step_columns[i])[0] = values[i];
+  if (!r.converged) step.span<double>("picard_failures")[0] += 1.0;
+  double& max_cfl = step.span<double>("max_cfl")[0];
+  double& max_div = step.span<double>("max_divergence")[0];
+  max_cfl = std::max(max_cfl, r.cfl);
+  max_div = std::max(max_div, r.divergence_max);
+}
+
+}  // namespace rift

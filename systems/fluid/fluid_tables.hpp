@@ -1,0 +1,40 @@
+#pragma once
+// Names of the fluid's tables and columns (systems/fluid/fluid_model.hpp), so the system declares access
+// with the same strings the store uses.
+//
+// fluid_node: x (3, position, fixed), velocity (3), pressure (1): the state after the last step;
+//            previous_velocity (3): the velocity before it (the next step's extrapolated start)
+// fluid_tet: nodes (i32 x4), pressure_matrix_coefficient (1): what the pressure preconditioner was last
+//            assembled with (part of the state a step depends on; see FluidSolver::restore_state)
+// fluid_step: one row, the last step's report: picard_iterations, converged (1/0), velocity_iterations,
+//            schur_iterations, pressure_iterations, amg_setups, velocity_change, pressure_change,
+//            divergence_l2, divergence_max, cfl; and running figures over the run: picard_failures, max_cfl,
+//            max_divergence; has_previous (1/0: previous_velocity is valid)
+#include <string>
+
+namespace rift::fluid {
+
+inline constexpr const char* node_table = "fluid_node";
+inline constexpr const char* tet_table = "fluid_tet";
+inline constexpr const char* step_table = "fluid_step";
+
+inline constexpr const char* step_columns[] = {"picard_iterations",
+                                               "converged",
+                                               "velocity_iterations",
+                                               "schur_iterations",
+                                               "pressure_iterations",
+                                               "amg_setups",
+                                               "velocity_change",
+                                               "pressure_change",
+                                               "divergence_l2",
+                                               "divergence_max",
+                                               "cfl",
+                                               "picard_failures",
+                                               "max_cfl",
+                                               "max_divergence"};
+
+inline std::string col(const char* table, const char* column) {
+  return std::string(table) + "." + column;
+}
+
+}  // namespace rift::fluid

@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/scene/output_fields.hpp"
+#include "engine/scene/suggest.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -36,10 +38,6 @@ void principal_values(const double* s, double* out) {
   out[1] = 3 * q - out[0] - out[2];
 }
 
-bool wants(const std::vector<std::string>& fields, const char* name) {
-  return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
-}
-
 }  // namespace
 
 void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
@@ -63,12 +61,12 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
              true,
              {}};
   auto node_field = [&](const char* name, const double* data) {
-    if (wants(fields, name))
+    if (wants_field(fields, name))
       g.fields.push_back({name, Center::node, 3, ElementType::f64, data, nodes.size()});
   };
   auto cell_field = [&](XdmfGrid& grid, const char* name, int components, ElementType type,
                         const void* data) {
-    if (wants(fields, name))
+    if (wants_field(fields, name))
       grid.fields.push_back({name, Center::cell, components, type, data, grid.cell_count});
   };
   node_field("displacement", displacement_.data());

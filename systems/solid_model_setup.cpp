@@ -5,6 +5,8 @@
 #include <map>
 
 #include "engine/core/error.hpp"
+#include "engine/scene/output_fields.hpp"
+#include "engine/scene/suggest.hpp"
 #include "kernels/stable_step.hpp"
 #include "kernels/tet_forces.hpp"
 #include "systems/solid_model.hpp"
@@ -13,12 +15,6 @@
 namespace rift {
 
 namespace {
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out.empty() ? "(none)" : out;
-}
 
 double max_face_area(std::span<const double> x, const int32_t* t) {
   double best = 0.0;
@@ -44,8 +40,8 @@ std::vector<bool> select_regions(const TetMesh& mesh, const std::vector<std::str
     else if (int32_t i = mesh.region_index(r); i >= 0)
       applies[i] = true;
     else
-      throw Error(key + ": the mesh has no region '" + r + "'; its regions are: " + join(mesh.region_names) +
-                  " (or use 'all')");
+      throw Error(key + ": the mesh has no region '" + r +
+                  "'; its regions are: " + join_names(mesh.region_names) + " (or use 'all')");
   }
   return applies;
 }
@@ -184,7 +180,7 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
     const int32_t surface = mesh.surface_index(bc.surface);
     if (surface < 0)
       throw Error(key + ": the mesh has no surface '" + bc.surface +
-                  "'; its surfaces are: " + join(mesh.surface_names));
+                  "'; its surfaces are: " + join_names(mesh.surface_names));
     const bool is_velocity =
         bc.kind == SolidBoundarySpec::Kind::fixed || bc.kind == SolidBoundarySpec::Kind::velocity;
     const int32_t index =

@@ -3,6 +3,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rift {
 
@@ -16,5 +17,12 @@ std::string closest_match(std::string_view word, std::span<const std::string> ca
 
 // "did you mean 'x'?" or "".
 std::string did_you_mean(std::string_view word, std::span<const std::string> candidates);
+
+// "a, b, c" for listing the valid names in a message; "(none)" for an empty list.
+inline std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "(none)" : out;
+}
 
 }  // namespace rift

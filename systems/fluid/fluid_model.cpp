@@ -7,21 +7,13 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/scene/output_fields.hpp"
+#include "engine/scene/suggest.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 
 namespace rift {
 
 namespace {
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out.empty() ? "(none)" : out;
-}
-
-bool wants(const std::vector<std::string>& fields, const char* name) {
-  return fields.empty() || std::find(fields.begin(), fields.end(), name) != fields.end();
-}
 
 std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const TetMesh& mesh) {
   std::vector<fluid::FluidBoundary> out;
@@ -29,7 +21,7 @@ std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const Te
     const FluidBoundarySpec& b = spec.boundaries[i];
     if (mesh.surface_index(b.surface) < 0)
       throw Error("fluid.boundaries[" + std::to_string(i) + "].surface: the mesh has no surface '" +
-                  b.surface + "'; its surfaces are: " + join(mesh.surface_names));
+                  b.surface + "'; its surfaces are: " + join_names(mesh.surface_names));
     fluid::FluidBoundary fb;
     fb.surface = b.surface;
     fb.kind = static_cast<fluid::BoundaryKind>(b.kind);
@@ -258,15 +250,15 @@ void FluidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
              0,
              false,
              {}};
-  if (wants(fields, "velocity"))
+  if (wants_field(fields, "velocity"))
     g.fields.push_back(
         {"velocity", Center::node, 3, ElementType::f64, nodes.span<double>("velocity").data(), nodes.size()});
-  if (wants(fields, "pressure"))
+  if (wants_field(fields, "pressure"))
     g.fields.push_back(
         {"pressure", Center::node, 1, ElementType::f64, nodes.span<double>("pressure").data(), nodes.size()});
-  if (wants(fields, "divergence"))
+  if (wants_field(fields, "divergence"))
     g.fields.push_back({"divergence", Center::cell, 1, ElementType::f64, divergence_.data(), tets.size()});
-  if (wants(fields, "cfl"))
+  if (wants_field(fields, "cfl"))
     g.fields.push_back({"cfl", Center::cell, 1, ElementType::f64, cfl_.data(), tets.size()});
   grids.push_back(std::move(g));
 }

@@ -53,6 +53,21 @@ struct CavityOptions {
   double projection_forcing = 1e-3;  // FluidSettings::projection_forcing
 };
 
+// Lid u = 1 on ymax, no slip on the other walls, free slip on the slab's z planes.
+inline std::vector<FluidBoundary> cavity_boundaries() {
+  return {{"ymax",
+           BoundaryKind::velocity,
+           [](const Vec3&, double) {
+             return Vec3{1, 0, 0};
+           },
+           {}},
+          {"xmin", BoundaryKind::no_slip, {}, {}},
+          {"xmax", BoundaryKind::no_slip, {}, {}},
+          {"ymin", BoundaryKind::no_slip, {}, {}},
+          {"zmin", BoundaryKind::free_slip, {}, {}},
+          {"zmax", BoundaryKind::free_slip, {}, {}}};
+}
+
 inline CavityResult run_cavity(int n, double dt, CavityOptions opt = {}) {
   StructuredBoxSpec spec;
   spec.hi = {1.0, 1.0, 1.0 / n};
@@ -68,18 +83,7 @@ inline CavityResult run_cavity(int n, double dt, CavityOptions opt = {}) {
   s.picard_max_iterations = opt.picard_iterations;
   s.velocity_forcing = opt.velocity_forcing;
   s.projection_forcing = opt.projection_forcing;
-  std::vector<FluidBoundary> bcs{{"ymax",
-                                  BoundaryKind::velocity,
-                                  [](const Vec3&, double) {
-                                    return Vec3{1, 0, 0};
-                                  },
-                                  {}},
-                                 {"xmin", BoundaryKind::no_slip, {}, {}},
-                                 {"xmax", BoundaryKind::no_slip, {}, {}},
-                                 {"ymin", BoundaryKind::no_slip, {}, {}},
-                                 {"zmin", BoundaryKind::free_slip, {}, {}},
-                                 {"zmax", BoundaryKind::free_slip, {}, {}}};
-  FluidSolver solver(mesh, s, bcs);
+  FluidSolver solver(mesh, s, cavity_boundaries());
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   const auto steady = fluid_test::march_to_steady(solver, 1e-6 * s.dt, 100000);

@@ -13,12 +13,10 @@
 
 #include "engine/mesh/structured_box.hpp"
 #include "systems/fluid/fluid_solver.hpp"
+#include "tests/validation/fluid_cavity.hpp"
 
 namespace rift {
 namespace {
-
-using fluid::BoundaryKind;
-using fluid::Vec3;
 
 struct FluidOutcome {
   bool finite = true, converged = true;
@@ -26,7 +24,7 @@ struct FluidOutcome {
   int max_picard = 0;
 };
 
-FluidOutcome run_cavity(double mu, fluid::PressureCoupling coupling) {
+FluidOutcome run_viscous_cavity(double mu, fluid::PressureCoupling coupling) {
   const int n = 8;
   StructuredBoxSpec spec;
   spec.hi = {1.0, 1.0, 1.0 / n};
@@ -39,18 +37,7 @@ FluidOutcome run_cavity(double mu, fluid::PressureCoupling coupling) {
   s.coupling = coupling;
   s.picard_max_iterations = 30;
   s.picard_tol = 1e-5;
-  std::vector<fluid::FluidBoundary> bcs{{"ymax",
-                                         BoundaryKind::velocity,
-                                         [](const Vec3&, double) {
-                                           return Vec3{1, 0, 0};
-                                         },
-                                         {}},
-                                        {"xmin", BoundaryKind::no_slip, {}, {}},
-                                        {"xmax", BoundaryKind::no_slip, {}, {}},
-                                        {"ymin", BoundaryKind::no_slip, {}, {}},
-                                        {"zmin", BoundaryKind::free_slip, {}, {}},
-                                        {"zmax", BoundaryKind::free_slip, {}, {}}};
-  fluid::FluidSolver solver(mesh, s, bcs);
+  fluid::FluidSolver solver(mesh, s, fluid_test::cavity_boundaries());
   FluidOutcome out;
   double volume = 0.0;
   for (double v : solver.volumes()) volume += v;
@@ -83,7 +70,7 @@ class FluidViscosityRange : public testing::TestWithParam<double> {};
 
 TEST_P(FluidViscosityRange, CavityRunsWithBoundedEnergy) {
   const double mu = GetParam();
-  const FluidOutcome o = run_cavity(mu, fluid::PressureCoupling::schur_gmres);
+  const FluidOutcome o = run_viscous_cavity(mu, fluid::PressureCoupling::schur_gmres);
   RecordProperty("max_speed", testing::PrintToString(o.max_speed));
   RecordProperty("kinetic_over_bound", testing::PrintToString(o.max_kinetic / o.bound_kinetic));
   RecordProperty("max_picard", testing::PrintToString(o.max_picard));

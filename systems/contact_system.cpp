@@ -59,9 +59,7 @@ ContactSystem::ContactSystem(Store& store, const ContactSpec& spec, size_t input
   pairs.add<int32_t>("tets", 2);
   pairs.add<double>("history", 3);
   pairs.add<double>("force", 24);
-  for (const char* c :
-       {"normal_force", "energy", "spring_energy", "friction_dissipation", "damping_dissipation"})
-    pairs.add<double>(c);
+  for (const char* c : {"friction_dissipation", "damping_dissipation"}) pairs.add<double>(c);
   Table& energy = store_.table(solid::energy_table);
   for (const char* c : {"contact_work", "friction", "contact_damping"}) energy.add<double>(c);
   Table& state = store_.add_table(solid::contact_state_table);
@@ -218,9 +216,6 @@ Access ContactSystem::access() const {
                                   col(P, "tets"),
                                   col(P, "history"),
                                   col(P, "force"),
-                                  col(P, "normal_force"),
-                                  col(P, "energy"),
-                                  col(P, "spring_energy"),
                                   col(P, "friction_dissipation"),
                                   col(P, "damping_dissipation"),
                                   col(solid::energy_table, "friction"),
@@ -342,20 +337,24 @@ void ContactSystem::detect() {
   const auto old_history = table.span<double>("history");
   old_history_.assign(old_history.begin(), old_history.end());
   // Nodes the old list gathered into are cleared here; compute_forces clears those of the new list.
-  auto contact_force = nodes.span<double>("contact_force");
-  for (const auto& p : old_pairs_)
-    for (int32_t t : {p.a, p.b})
-      for (int c = 0; c < 4; ++c)
-        for (int i = 0; i < 3; ++i) contact_force[3 * conn[4 * t + c] + i] = 0.0;
+  clear_gathered_nodes(old_pairs_);
   table.resize(found.size());
   auto* pairs = reinterpret_cast<kernels::ContactPair*>(table.span<int32_t>("tets").data());
   std::copy(found.begin(), found.end(), pairs);
   kernels::remap_pair_history(old_pairs_, old_history_, {pairs, found.size()}, table.span<double>("history"));
-  const auto all_x = nodes.span<const double>("x");
-  auto x_detect = nodes.span<double>("x_detect");
-  std::copy(all_x.begin(), all_x.end(), x_detect.begin());
+  std::copy(x.begin(), x.end(), nodes.span<double>("x_detect").begin());
   ++store_.table(solid::contact_state_table).span<int64_t>("detections")[0];
   must_detect_ = false;
+}
+
+// Zeroes solid_node.contact_force at the corners of the pairs' tets: what a gather over them wrote.
+void ContactSystem::clear_gathered_nodes(std::span<const kernels::ContactPair> pairs) {
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  auto contact_force = store_.table(solid::node_table).span<double>("contact_force");
+  for (const auto& p : pairs)
+    for (int32_t t : {p.a, p.b})
+      for (int c = 0; c < 4; ++c)
+        for (int i = 0; i < 3; ++i) contact_force[3 * conn[4 * t + c] + i] = 0.0;
 }
 
 void ContactSystem::compute_forces(const StepContext& ctx) {
@@ -373,11 +372,8 @@ void ContactSystem::compute_forces(const StepContext& ctx) {
   args.dt = ctx.dt;
   args.history = table.span<double>("history");
   args.pair_force = table.span<double>("force");
-  args.normal_force = table.span<double>("normal_force");
   args.friction_dissipation = table.span<double>("friction_dissipation");
   args.damping_dissipation = table.span<double>("damping_dissipation");
-  args.energy = table.span<double>("energy");
-  args.friction_energy = table.span<double>("spring_energy");
   const size_t blocks = (pairs.size() + kPairGrain - 1) / kPairGrain;
   if (partial_status_.size() < blocks) partial_status_.resize(blocks);
   parallel_for(pairs.size(), kPairGrain, [&](size_t begin, size_t end) {
@@ -386,12 +382,8 @@ void ContactSystem::compute_forces(const StepContext& ctx) {
   status_ = {};
   for (size_t b = 0; b < blocks; ++b) status_ += partial_status_[b];
   // Clear the nodes this list gathers into, then gather in pair order (deterministic).
-  auto contact_force = nodes.span<double>("contact_force");
-  for (const auto& p : pairs)
-    for (int32_t t : {p.a, p.b})
-      for (int c = 0; c < 4; ++c)
-        for (int i = 0; i < 3; ++i) contact_force[3 * conn[4 * t + c] + i] = 0.0;
-  kernels::contact_gather(pairs, conn, args.pair_force, contact_force);
+  clear_gathered_nodes(pairs);
+  kernels::contact_gather(pairs, conn, args.pair_force, nodes.span<double>("contact_force"));
   double friction = 0.0, damping = 0.0;
   for (size_t k = 0; k < pairs.size(); ++k) {
     friction += args.friction_dissipation[k];
@@ -410,8 +402,6 @@ ContactTotals ContactSystem::totals() const {
   t.touching = status_.touching;
   t.sliding = status_.sliding;
   t.detections = store_.table(solid::contact_state_table).span<const int64_t>("detections")[0];
-  for (double e : table.span<const double>("energy")) t.overlap_energy += e;
-  for (double e : table.span<const double>("spring_energy")) t.spring_energy += e;
   return t;
 }
 

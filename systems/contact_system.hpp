@@ -46,8 +46,6 @@ namespace rift {
 struct ContactTotals {
   size_t candidates = 0, pairs = 0, touching = 0, sliding = 0;
   int64_t detections = 0;
-  double overlap_energy = 0.0;  // sum of the pairs' potential energy E [J]
-  double spring_energy = 0.0;   // elastic energy in the friction springs [J]
 };
 
 class ContactSystem : public System {
@@ -76,6 +74,7 @@ class ContactSystem : public System {
   bool detection_needed();
   void detect();
   void compute_forces(const StepContext& ctx);
+  void clear_gathered_nodes(std::span<const kernels::ContactPair> pairs);
   void derive_constants(const ContactSpec& spec, std::span<const double> tet_density);
   void find_bodies_and_boundary_tets();
   void estimate_stable_step();

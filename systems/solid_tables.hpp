@@ -21,10 +21,10 @@ inline constexpr const char* contact_state_table = "solid_contact_state";
 // solid_tet: nodes (i32 x4), dm_inv (9), volume0 (1), material (i32), region (i32),
 //            corner_force (12), stress (6), energy (1), viscous_power (1)
 // solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),
-//            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear), corner_force (18),
-//            opening, slip, damage, stored_energy (1 each), initial_offset (3, in-situ state; 0 without one)
-//            contact_force (3, with contact only: the contact forces of the step, gathered per node),
-//            x_detect (3, with contact only: positions at the last contact detection)
+//            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear, 3 initial crack),
+//            corner_force (18), opening, slip, damage, stored_energy (1 each), initial_offset (3, in-situ
+//            state; 0 without one) contact_force (3, with contact only: the contact forces of the step,
+//            gathered per node), x_detect (3, with contact only: positions at the last contact detection)
 // solid_load_face: nodes (i32 x3), load (i32), corner_force (9)
 // solid_force_slot: slot (i32): the corner-force slots of every node, grouped by node: tet corners
 //            [0, 4 T), then joint corners [4 T, 4 T + 6 J), then loaded-face corners
@@ -37,9 +37,8 @@ inline constexpr const char* contact_state_table = "solid_contact_state";
 //            also contact_work (work of the contact forces), friction and contact_damping (dissipation)
 // solid_contact_pair (with contact only): one row per candidate pair of the last detection, sorted:
 //            tets (i32 x2, a < b), history (3, friction force on a), force (24, corner forces of a then b),
-//            normal_force, energy (overlap energy of the potential), spring_energy (friction spring),
 //            friction_dissipation, damping_dissipation (of the last step)
-// solid_contact_state (with contact only): one row: buffer [m], detections (i64), candidates (i64)
+// solid_contact_state (with contact only): one row: detections (i64, detections so far)
 
 inline std::string col(const char* table, const char* column) {
   return std::string(table) + "." + column;

@@ -4,8 +4,14 @@
 
 namespace rift::kernels {
 
-NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
+namespace {
+
+// Damped is a template argument so the undamped pass keeps its instructions (and bits) exactly.
+template <bool Damped>
+NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
   NodeStepResult r;
+  const double half_cdt = 0.5 * a.mass_damping * a.dt;
+  const double keep = (1.0 - half_cdt) / (1.0 + half_cdt), gain = a.dt / (1.0 + half_cdt);
   for (size_t n = begin; n < end; ++n) {
     // Per source, so the work of each can be booked. A node's slots are grouped by source (tets, joints,
     // faces: set-up guarantees it), so three plain loops accumulate in registers without branching per slot.
@@ -37,11 +43,19 @@ NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s
       const int32_t bc = a.held_velocity[i];
       const double held = bc >= 0 ? a.prescribed[3 * bc + c] : 0.0;
       const bool is_free = a.free_mask[i];
-      const double v = is_free ? v_old + a.dt * (total * w + a.gravity[c]) : held;
+      double v;
+      if constexpr (Damped)
+        v = is_free && w > 0.0 ? keep * v_old + gain * (total * w + a.gravity[c])
+            : is_free          ? v_old + a.dt * (total * w + a.gravity[c])
+                               : held;
+      else
+        v = is_free ? v_old + a.dt * (total * w + a.gravity[c]) : held;
       a.v[i] = v;
       a.x[i] += a.dt * v;
       finite = finite && std::isfinite(a.x[i]) && std::isfinite(v);
       const double dx = 0.5 * a.dt * (v_old + v);
+      if constexpr (Damped)
+        if (is_free && w > 0.0) r.damping += a.mass_damping * m * 0.5 * (v_old + v) * dx;
       r.work[0] += f[0][c] * dx;
       r.work[1] += f[1][c] * dx;
       r.work[3] += fc[c] * dx;
@@ -53,6 +67,12 @@ NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s
     r.non_finite += finite ? 0 : 1;
   }
   return r;
+}
+
+}  // namespace
+
+NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
+  return a.mass_damping > 0.0 ? integrate<true>(a, s, begin, end) : integrate<false>(a, s, begin, end);
 }
 
 }  // namespace rift::kernels

@@ -35,14 +35,21 @@ struct NodeIntegrationArgs {
   // 3 per node, or empty: forces gathered per node by a producer whose pairs change between steps
   // (contact), internal like sources 0 and 1; their work is booked as work[3].
   std::span<const double> node_force = {};
+  // c [1/s]: a drag -c m v on every free component (dynamic relaxation). The damped leapfrog
+  //   v(t+dt/2) = ((1 - c dt/2) v(t-dt/2) + dt (f/m + g)) / (1 + c dt/2)
+  // is the undamped one with the drag taken at the mean of the two half-step velocities, so its work,
+  // -c m v_mean . dx, keeps the energy identity exact; it is booked as `damping` (dissipated, >= 0).
+  double mass_damping = 0.0;
 };
 
 struct NodeStepResult {
   size_t non_finite = 0;  // nodes whose new position or velocity is not finite (0 in a healthy run)
   // work of source 0, source 1, everything external, and node_force [J]
   double work[4] = {0.0, 0.0, 0.0, 0.0};
+  double damping = 0.0;  // energy the mass damping took out [J]
   NodeStepResult& operator+=(const NodeStepResult& o) {
     non_finite += o.non_finite;
+    damping += o.damping;
     for (int k = 0; k < 4; ++k) work[k] += o.work[k];
     return *this;
   }

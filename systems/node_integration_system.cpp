@@ -11,8 +11,8 @@ constexpr size_t grain = 4096;
 }
 
 NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoundarySpec> conditions,
-                                             std::array<double, 3> gravity)
-    : store_(store), conditions_(std::move(conditions)), gravity_(gravity) {
+                                             std::array<double, 3> gravity, double mass_damping)
+    : store_(store), conditions_(std::move(conditions)), gravity_(gravity), mass_damping_(mass_damping) {
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
   contact_ = store_.table(solid::node_table).has("contact_force");
@@ -39,6 +39,7 @@ Access NodeIntegrationSystem::access() const {
     reads.push_back(col(N, "contact_force"));
     writes.push_back(col(E, "contact_work"));
   }
+  if (mass_damping_ > 0.0) writes.push_back(col(E, "damping"));
   return {reads, writes};
 }
 
@@ -62,7 +63,8 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       nodes.span<uint8_t>("free"),
       nodes.span<int32_t>("held"),
       prescribed_,
-      contact_ ? nodes.span<double>("contact_force") : std::span<double>{}};
+      contact_ ? nodes.span<double>("contact_force") : std::span<double>{},
+      mass_damping_};
   const Table& tets = store_.table(solid::tet_table);
   const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
   const Table& faces = store_.table(solid::face_table);
@@ -86,6 +88,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   energy.span<double>("joint_work")[0] += total.work[1];
   energy.span<double>("external_work")[0] += total.work[2];
   if (contact_) energy.span<double>("contact_work")[0] += total.work[3];
+  if (mass_damping_ > 0.0) energy.span<double>("damping")[0] += total.damping;
 }
 
 }  // namespace rift

@@ -21,6 +21,8 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   apply_initial_velocity(mesh);
   apply_boundaries(dm, mesh);
   if (spec_.fracture) build_joints(dm);
+  crack_face_begin_ = store_.table(solid::face_table).size();
+  if (spec_.fracture && spec_.fracture->crack_pressure) add_crack_faces();
   build_force_slots();
   compute_mass_and_stable_dt();
   create_bookkeeping_tables();
@@ -32,9 +34,10 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   if (spec_.initial_stress)
     for (size_t m = 0; m < spec_.materials.size(); ++m)
       prestress.insert(prestress.end(), initial_stress_.begin(), initial_stress_.end());
-  loads_ = std::make_unique<SurfaceLoadSystem>(store_, load_conditions_, initial_stress_);
+  loads_ = std::make_unique<SurfaceLoadSystem>(store_, load_conditions_, initial_stress_, crack_face_begin_);
   tet_forces_ = std::make_unique<TetForceSystem>(store_, tet_materials_, std::move(prestress));
-  integration_ = std::make_unique<NodeIntegrationSystem>(store_, velocity_conditions_, spec_.gravity);
+  integration_ = std::make_unique<NodeIntegrationSystem>(store_, velocity_conditions_, spec_.gravity,
+                                                         spec_.mass_damping);
   stable_dt_ = tet_stable_dt_;
   joint_stable_dt_ = INFINITY;
   if (spec_.fracture) {
@@ -73,7 +76,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
       "solid: {} tets ({} in the fracture zone, {:.1f} %), {} nodes, {} joints, {} loaded faces",
       store_.table(solid::tet_table).size(), zone_tets_,
       100.0 * static_cast<double>(zone_tets_) / std::max<size_t>(1, store_.table(solid::tet_table).size()),
-      store_.table(solid::node_table).size(), joints, store_.table(solid::face_table).size());
+      store_.table(solid::node_table).size(), joints, crack_face_begin_);
   spdlog::info(
       "solid: stable step {:.4g} s (tets {:.4g} s, set by tet {}; joints {:.4g} s; contact {:.4g} s)",
       stable_dt_, tet_stable_dt_, critical_tet_, joint_stable_dt_,
@@ -171,7 +174,9 @@ void SolidModel::summarize(nlohmann::json& summary) const {
   s["zone_tets"] = zone_tets_;
   s["joints"] = joint_count();
   s["broken_joints"] = broken_joint_count();
-  s["loaded_faces"] = store_.table(solid::face_table).size();
+  s["loaded_faces"] = crack_face_begin_;
+  s["crack_faces_pressed"] = loads_->pressed_crack_faces();
+  s["mass_damping"] = spec_.mass_damping;
   s["stable_dt"] = stable_dt_;
   s["tet_stable_dt"] = tet_stable_dt_;
   s["joint_stable_dt"] =

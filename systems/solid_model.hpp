@@ -69,6 +69,7 @@ class SolidModel : public Model {
   void compute_mass_and_stable_dt();
   void create_bookkeeping_tables();
   void apply_initial_cracks();
+  void add_crack_faces();  // two loaded faces per joint, pressed once the joint is broken
   void build_contact(const TetMesh& mesh);
   std::optional<std::string> check_energy(const StepContext& after);
 
@@ -78,6 +79,7 @@ class SolidModel : public Model {
   std::vector<kernels::TetMaterial> tet_materials_;
   std::vector<kernels::JointMaterial> joint_materials_;
   std::vector<SolidBoundarySpec> velocity_conditions_, load_conditions_;
+  size_t crack_face_begin_ = 0;  // loaded faces from here on are joint faces (2 per joint, in joint order)
   double stable_dt_ = 0.0, tet_stable_dt_ = 0.0, joint_stable_dt_ = 0.0;
   int64_t critical_tet_ = -1;
   size_t zone_tets_ = 0;

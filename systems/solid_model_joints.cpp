@@ -215,3 +215,52 @@ void SolidModel::build_contact(const TetMesh& mesh) {
 }
 
 }  // namespace rift
+
+namespace rift {
+
+// With solid.fracture.crack_pressure, every joint gets its two faces as loaded faces (face 2j + s is the
+// face of joint j on tets[s], oriented out of that tet), all tied to one pressure condition. The surface
+// load system presses only the faces of broken joints, so an intact joint's rows stay zero; their slots
+// are in every node's list from the start, and a break changes no slot.
+void SolidModel::add_crack_faces() {
+  const Table& joints = store_.table(solid::joint_table);
+  const auto jn = joints.span<const int32_t>("nodes");
+  const auto jt = joints.span<const int32_t>("tets");
+  const auto tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  Table& faces = store_.table(solid::face_table);
+  const size_t first = faces.size();
+  faces.resize(first + 2 * joints.size());
+  auto face_nodes = faces.span<int32_t>("nodes");
+  auto face_load = faces.span<int32_t>("load");
+  const int32_t load = static_cast<int32_t>(load_conditions_.size());
+  for (size_t j = 0; j < joints.size(); ++j)
+    for (int s = 0; s < 2; ++s) {
+      const int32_t* tri = &jn[6 * j + 3 * s];
+      const int32_t* tet = &tet_nodes[4 * static_cast<size_t>(jt[2 * j + s])];
+      int32_t apex = -1;
+      for (int k = 0; k < 4; ++k)
+        if (tet[k] != tri[0] && tet[k] != tri[1] && tet[k] != tri[2]) apex = tet[k];
+      if (apex < 0) throw Error("internal: joint " + std::to_string(j) + " face is not a face of its tet");
+      const double* p0 = &x0[3 * tri[0]];
+      const double* p1 = &x0[3 * tri[1]];
+      const double* p2 = &x0[3 * tri[2]];
+      const double* pa = &x0[3 * apex];
+      double a[3], c[3], d[3];
+      for (int i = 0; i < 3; ++i) a[i] = p1[i] - p0[i], c[i] = p2[i] - p0[i], d[i] = pa[i] - p0[i];
+      const double n[3] = {a[1] * c[2] - a[2] * c[1], a[2] * c[0] - a[0] * c[2], a[0] * c[1] - a[1] * c[0]};
+      const bool outward = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
+      const size_t f = first + 2 * j + static_cast<size_t>(s);
+      face_nodes[3 * f] = tri[0];
+      face_nodes[3 * f + 1] = outward ? tri[1] : tri[2];
+      face_nodes[3 * f + 2] = outward ? tri[2] : tri[1];
+      face_load[f] = load;
+    }
+  SolidBoundarySpec crack;
+  crack.kind = SolidBoundarySpec::Kind::pressure;
+  crack.surface = "solid.fracture.crack_pressure";
+  crack.function = *spec_.fracture->crack_pressure;
+  load_conditions_.push_back(crack);
+}
+
+}  // namespace rift

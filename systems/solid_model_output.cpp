@@ -143,6 +143,19 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
   row.emplace_back("solid_external_work", e.external_work);
   row.emplace_back("solid_energy_balance_error", e.balance_error());
   row.emplace_back("solid_broken_joints", static_cast<double>(broken_joint_count()));
+  if (store_.has(solid::joint_table)) {
+    // Volume between the faces of the broken joints: opening (normal, geometric) x area at the break.
+    // What a pressurised crack's opening volume is checked against (Sneddon), and what a fluid fills.
+    const Table& ev = store_.table(solid::event_table);
+    const auto joint = ev.span<const int32_t>("joint");
+    const auto area = ev.span<const double>("area");
+    const auto opening = store_.table(solid::joint_table).span<const double>("opening");
+    double volume = 0.0;
+    for (size_t k = 0; k < ev.size(); ++k) volume += std::max(0.0, opening[joint[k]]) * area[k];
+    row.emplace_back("solid_crack_volume", volume);
+    if (spec_.fracture->crack_pressure)
+      row.emplace_back("solid_crack_pressure", (*spec_.fracture->crack_pressure)(time));
+  }
   if (contact_) {
     const ContactTotals c = contact_->totals();
     row.emplace_back("contact_pairs", static_cast<double>(c.pairs));

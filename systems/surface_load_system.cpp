@@ -6,13 +6,29 @@
 namespace rift {
 
 SurfaceLoadSystem::SurfaceLoadSystem(Store& store, std::vector<SolidBoundarySpec> loads,
-                                     std::array<double, 6> initial_stress)
-    : store_(store), specs_(std::move(loads)), initial_stress_(initial_stress), values_(specs_.size()) {}
+                                     std::array<double, 6> initial_stress, size_t crack_face_begin)
+    : store_(store),
+      specs_(std::move(loads)),
+      initial_stress_(initial_stress),
+      values_(specs_.size()),
+      crack_face_begin_(crack_face_begin),
+      has_crack_faces_(crack_face_begin < store.table(solid::face_table).size()) {
+  if (has_crack_faces_) broken_joints_.reserve(store_.table(solid::joint_table).size());
+}
 
 Access SurfaceLoadSystem::access() const {
   using solid::col;
   const char* F = solid::face_table;
-  return {{col(solid::node_table, "x"), col(F, "nodes"), col(F, "load")}, {col(F, "corner_force")}};
+  std::vector<std::string> reads{col(solid::node_table, "x"), col(F, "nodes"), col(F, "load")};
+  // Reading the log orders this system before the joints' pass that appends to it: a joint broken in
+  // step n is pressed from step n + 1 on, on any thread count.
+  if (has_crack_faces_) reads.push_back(col(solid::event_table, "joint"));
+  return {reads, {col(F, "corner_force")}};
+}
+
+void SurfaceLoadSystem::follow_fracture_log() {
+  const auto joint = store_.table(solid::event_table).span<const int32_t>("joint");
+  for (; events_seen_ < joint.size(); ++events_seen_) broken_joints_.push_back(joint[events_seen_]);
 }
 
 void SurfaceLoadSystem::run(const StepContext& ctx) {
@@ -31,9 +47,20 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
   }
   Table& faces = store_.table(solid::face_table);
   const auto x = store_.table(solid::node_table).span<double>("x");
-  parallel_for(faces.size(), 2048, [&](size_t begin, size_t end) {
-    kernels::surface_loads(x, faces.span<int32_t>("nodes"), faces.span<int32_t>("load"), values_,
-                           faces.span<double>("corner_force"), begin, end);
+  const auto nodes = faces.span<int32_t>("nodes");
+  const auto load = faces.span<int32_t>("load");
+  const auto force = faces.span<double>("corner_force");
+  parallel_for(crack_face_begin_, 2048, [&](size_t begin, size_t end) {
+    kernels::surface_loads(x, nodes, load, values_, force, begin, end);
+  });
+  if (!has_crack_faces_) return;
+  follow_fracture_log();
+  // Each broken joint's two faces are adjacent rows; every row is written by one joint only.
+  parallel_for(broken_joints_.size(), 1024, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const size_t f = crack_face_begin_ + 2 * static_cast<size_t>(broken_joints_[k]);
+      kernels::surface_loads(x, nodes, load, values_, force, f, f + 2);
+    }
   });
 }
 

@@ -64,6 +64,10 @@ FractureSpec read_fracture_section(MapReader& f) {
   spec.integration_points = static_cast<int>(points);
   spec.y_compatible = f.choice("softening", kSoftening, 0) == 1;
   for (auto& c : f.section_list("initial_cracks", 0)) spec.initial_cracks.push_back(read_crack_plane(c));
+  if (f.has("crack_pressure"))
+    spec.crack_pressure = f.time_function("crack_pressure", "Pa", std::nullopt);
+  else
+    f.declare("crack_pressure");
   f.finish();
   return spec;
 }

@@ -102,6 +102,7 @@ void check_unique_names(MapReader& solid, std::vector<MapReader>& readers,
 SolidSpec read_solid_section(MapReader& sec) {
   SolidSpec solid;
   solid.gravity = sec.vec3("gravity", any_real("m/s^2"), std::array<double, 3>{});
+  solid.mass_damping = sec.real("mass_damping", non_negative("1/s"), 0.0);
   auto materials = sec.section_list("materials", 1);
   for (auto& m : materials) solid.materials.push_back(read_material(m));
   check_unique_names(sec, materials, solid.materials);

@@ -103,6 +103,9 @@ struct FractureSpec {
   std::optional<std::array<double, 3>> box_min, box_max;  // both or neither [m]
   int integration_points = 3;                             // 3 or 7 per joint
   bool y_compatible = false;  // softening length 3 G / f (Y code) instead of the energy-exact one
+  // A uniform pressure on both faces of every broken joint (initial cracks and new breaks) [Pa]: the fluid
+  // in the cracks when its flow is not modelled (the inviscid, connected limit). Absent: none.
+  std::optional<TimeFunction> crack_pressure;
 };
 
 // A uniform in-situ stress, present at t = 0 in every tet and joint (compression negative).
@@ -165,7 +168,8 @@ struct SolidSpec {
   std::vector<InitialVelocitySpec> initial_velocity;
   std::optional<ContactSpec> contact;  // absent: no contact system
   std::vector<SolidBoundarySpec> boundaries;
-  std::array<double, 3> gravity{};                  // [m/s^2]
+  std::array<double, 3> gravity{};  // [m/s^2]
+  double mass_damping = 0.0;  // c [1/s]: a drag -c m v on every node (dynamic relaxation to a static state)
   std::optional<FractureSpec> fracture;             // absent: continuous mesh, no joints
   std::optional<InitialStressSpec> initial_stress;  // absent: stress-free start
 };

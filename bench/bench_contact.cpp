@@ -111,6 +111,26 @@ void broad_sizes(benchmark::internal::Benchmark* b) {
     for (int64_t n : {2000, 10000, 100000, 1000000}) b->Args({n, source});
   }
 }
+// Ours at 1 and 2 threads (the sweep in chunks on the arena): {boxes, source, threads}.
+void broad_sizes_and_threads(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"boxes", "cloud", "threads"});
+  for (int64_t source : {mesh, cloud}) {
+    if (rift::bench::tiny()) {
+      b->Args({1000, source, 2});
+      continue;
+    }
+    for (int64_t n : {10000, 100000, 1000000})
+      for (int64_t t : {1, 2}) b->Args({n, source, t});
+  }
+}
+
+// The sweep's chunks on the benchmark's arena of `threads` threads.
+int g_threads = 1;
+void run_chunks_on_arena(size_t count, rift::kernels::ChunkBody body, void* context) {
+  rift::bench::parallel_ranges(g_threads, count, 1, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) body(context, k);
+  });
+}
 void brute_sizes(benchmark::internal::Benchmark* b) {
   b->ArgNames({"boxes", "cloud"});
   for (int64_t source : {mesh, cloud}) {
@@ -122,9 +142,9 @@ void brute_sizes(benchmark::internal::Benchmark* b) {
   }
 }
 
-void report_broad(benchmark::State& state, const BoxSet& b, size_t pairs) {
+void report_broad(benchmark::State& state, const BoxSet& b, size_t pairs, int threads = 1) {
   const double per_box = 52.0 + 16.0 * static_cast<double>(pairs) / static_cast<double>(b.n);
-  rift::bench::report_throughput(state, b.n, per_box, 1);
+  rift::bench::report_throughput(state, b.n, per_box, threads);
   state.counters["boxes"] = static_cast<double>(b.n);
   state.counters["pairs"] = static_cast<double>(pairs);
 }
@@ -137,14 +157,18 @@ size_t reference_pairs(const BoxSet& b) {
 
 void BM_BroadPhase(benchmark::State& state) {
   const BoxSet& b = boxes(static_cast<size_t>(state.range(0)), state.range(1));
+  g_threads = static_cast<int>(state.range(2));
+  auto args = b.args();
+  args.run_chunks = &run_chunks_on_arena;
   BroadPhaseWorkspace ws;
-  rift::kernels::contact_broad_phase(b.args(), ws);  // warm: capacities in place
+  rift::kernels::contact_broad_phase(args, ws);  // warm: capacities in place
   rift::kernels::BroadPhaseStats st;
   for (auto _ : state) {
-    st = rift::kernels::contact_broad_phase(b.args(), ws);
+    st = rift::kernels::contact_broad_phase(args, ws);
     benchmark::DoNotOptimize(ws.pairs.data());
   }
-  report_broad(state, b, st.pairs);
+  if (st.pairs != reference_pairs(b)) state.SkipWithError("threaded pair count differs");
+  report_broad(state, b, st.pairs, g_threads);
   state.counters["tests_per_box"] = static_cast<double>(st.tested) / static_cast<double>(b.n);
   state.counters["grows"] = static_cast<double>(ws.grows);
 }
@@ -191,7 +215,7 @@ void BM_BroadPhaseCgal(benchmark::State& state) {
   report_broad(state, b, pairs.size());
 }
 
-BENCHMARK(BM_BroadPhase)->Apply(broad_sizes)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BroadPhase)->Apply(broad_sizes_and_threads)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BroadPhaseBruteForce)->Apply(brute_sizes)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BroadPhaseCgal)->Apply(broad_sizes)->UseRealTime()->Unit(benchmark::kMillisecond);
 

@@ -109,6 +109,68 @@ size_t finish_pairs(BroadPhaseWorkspace& ws, size_t count, std::span<const Conta
   return removed;
 }
 
+constexpr size_t kChunkBoxes = 4096;
+
+size_t chunk_key_capacity(const BroadPhaseWorkspace& ws) {
+  size_t c = 0;
+  for (const auto& k : ws.chunk_keys) c += k.capacity();
+  return c;
+}
+
+struct SweepContext {
+  BroadPhaseWorkspace* ws;
+  size_t n;
+  uint64_t nx, nxy;  // cells per row and per layer (padding included)
+};
+
+// One chunk of the sweep: the cells whose entries lie in [chunk_begin[k], chunk_begin[k + 1]), each tested
+// against itself and its 13 later neighbours (5 runs of keys, header), which may lie in later chunks. The
+// cursors start at the chunk's first cell (a binary search) and then only move forward.
+void sweep_chunk(void* context, size_t k) {
+  const SweepContext& c = *static_cast<SweepContext*>(context);
+  BroadPhaseWorkspace& ws = *c.ws;
+  const auto& entries = ws.entries;
+  std::vector<uint64_t>& keys = ws.chunk_keys[k];
+  keys.resize(0);
+  size_t tested = 0;
+  auto emit = [&](size_t s, size_t t) {
+    ++tested;
+    if (!overlap(&ws.sorted_box[6 * s], &ws.sorted_box[6 * t])) return;
+    const uint64_t a = ws.sorted_rank[s], b = ws.sorted_rank[t];
+    if (a == b) return;
+    keys.push_back(a < b ? (a << 32) | b : (b << 32) | a);
+  };
+  const uint64_t row_lo[5] = {1, c.nx - 1, c.nxy - c.nx - 1, c.nxy - 1, c.nxy + c.nx - 1};
+  const uint64_t row_hi[5] = {1, c.nx + 1, c.nxy - c.nx + 1, c.nxy + 1, c.nxy + c.nx + 1};
+  const size_t first = ws.chunk_begin[k], last = ws.chunk_begin[k + 1];
+  size_t cursor[5];
+  for (int r = 0; r < 5; ++r) {
+    const uint64_t lo = entries[first].key + row_lo[r];
+    cursor[r] = static_cast<size_t>(
+        std::lower_bound(entries.begin() + static_cast<std::ptrdiff_t>(first),
+                         entries.begin() + static_cast<std::ptrdiff_t>(c.n), lo,
+                         [](const BroadPhaseWorkspace::Entry& e, uint64_t v) { return e.key < v; }) -
+        entries.begin());
+  }
+  for (size_t s = first; s < last;) {
+    const uint64_t key = entries[s].key;
+    size_t e = s + 1;
+    while (e < c.n && entries[e].key == key) ++e;
+    for (size_t i = s; i < e; ++i)
+      for (size_t j = i + 1; j < e; ++j) emit(i, j);
+    for (int r = 0; r < 5; ++r) {
+      const uint64_t lo = key + row_lo[r], hi = key + row_hi[r];
+      size_t& q0 = cursor[r];
+      if (q0 < e) q0 = e;
+      while (q0 < c.n && entries[q0].key < lo) ++q0;
+      for (size_t q = q0; q < c.n && entries[q].key <= hi; ++q)
+        for (size_t i = s; i < e; ++i) emit(i, q);
+    }
+    s = e;
+  }
+  ws.chunk_tested[k] = tested;
+}
+
 }  // namespace
 
 BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorkspace& ws) {
@@ -116,7 +178,8 @@ BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorksp
     return ws.entries.capacity() + ws.entries_tmp.capacity() + ws.id_entries.capacity() +
            ws.sorted_box.capacity() + ws.sorted_rank.capacity() + ws.rank_of_box.capacity() +
            ws.rank_id.capacity() + ws.keys.capacity() + ws.keys_tmp.capacity() + ws.count.capacity() +
-           ws.pairs.capacity();
+           ws.pairs.capacity() + ws.chunk_keys.capacity() + ws.chunk_begin.capacity() +
+           ws.chunk_tested.capacity() + chunk_key_capacity(ws);
   };
   const size_t cap_before = capacity();
   BroadPhaseStats st;
@@ -189,36 +252,36 @@ BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorksp
     ws.sorted_rank[s] = ws.rank_of_box[i];
   }
 
-  // Sweep.
-  ws.keys.resize(0);
-  auto emit = [&](size_t s, size_t t) {
-    ++st.tested;
-    if (!overlap(&ws.sorted_box[6 * s], &ws.sorted_box[6 * t])) return;
-    const uint64_t a = ws.sorted_rank[s], b = ws.sorted_rank[t];
-    if (a == b) return;
-    ws.keys.push_back(a < b ? (a << 32) | b : (b << 32) | a);
-  };
-  const uint64_t nx = dim[0], nxy = dim[0] * dim[1];
-  const uint64_t row_lo[5] = {1, nx - 1, nxy - nx - 1, nxy - 1, nxy + nx - 1};
-  const uint64_t row_hi[5] = {1, nx + 1, nxy - nx + 1, nxy + 1, nxy + nx + 1};
-  size_t cursor[5] = {0, 0, 0, 0, 0};
+  // Sweep, in chunks of about kChunkBoxes entries that start on a cell boundary.
+  ws.chunk_begin.resize(0);
   for (size_t s = 0; s < n;) {
-    const uint64_t key = ws.entries[s].key;
-    size_t e = s + 1;
-    while (e < n && ws.entries[e].key == key) ++e;
-    ++st.cells;
-    for (size_t i = s; i < e; ++i)
-      for (size_t j = i + 1; j < e; ++j) emit(i, j);
-    for (int r = 0; r < 5; ++r) {
-      const uint64_t lo = key + row_lo[r], hi = key + row_hi[r];
-      size_t& q0 = cursor[r];
-      if (q0 < e) q0 = e;
-      while (q0 < n && ws.entries[q0].key < lo) ++q0;
-      for (size_t q = q0; q < n && ws.entries[q].key <= hi; ++q)
-        for (size_t i = s; i < e; ++i) emit(i, q);
-    }
-    s = e;
+    ws.chunk_begin.push_back(s);
+    s = std::min(n, s + kChunkBoxes);
+    while (s < n && ws.entries[s].key == ws.entries[s - 1].key) ++s;
   }
+  ws.chunk_begin.push_back(n);
+  const size_t chunks = ws.chunk_begin.size() - 1;
+  if (ws.chunk_keys.size() < chunks) ws.chunk_keys.resize(chunks);
+  ensure_size(ws.chunk_tested, chunks);
+  SweepContext sweep{&ws, n, dim[0], dim[0] * dim[1]};
+  if (args.run_chunks)
+    args.run_chunks(chunks, &sweep_chunk, &sweep);
+  else
+    for (size_t k = 0; k < chunks; ++k) sweep_chunk(&sweep, k);
+  size_t found = 0;
+  for (size_t k = 0; k < chunks; ++k) {
+    found += ws.chunk_keys[k].size();
+    st.tested += ws.chunk_tested[k];
+  }
+  ws.keys.resize(found);
+  found = 0;
+  for (size_t k = 0; k < chunks; ++k) {
+    std::copy(ws.chunk_keys[k].begin(), ws.chunk_keys[k].end(),
+              ws.keys.begin() + static_cast<std::ptrdiff_t>(found));
+    found += ws.chunk_keys[k].size();
+  }
+  for (size_t s = 0; s < n; ++s)
+    if (s == 0 || ws.entries[s].key != ws.entries[s - 1].key) ++st.cells;
 
   size_t out = 0;
   sort_pair_keys(ws, ws.keys.size(), ranks);

@@ -57,12 +57,21 @@ struct ContactPair {
   }
 };
 
+// Runs body(context, k) for every k in [0, count), in any order and possibly concurrently (the caller's
+// thread pool; the kernel itself knows no threads). A plain function pointer, so a call allocates nothing.
+using ChunkBody = void (*)(void* context, size_t k);
+using ChunkRunner = void (*)(size_t count, ChunkBody body, void* context);
+
 struct BroadPhaseArgs {
   std::span<const int32_t> ids;                // n: the tet id of each box
   std::span<const double> lo;                  // 3n: box minimum corner
   std::span<const double> hi;                  // 3n: box maximum corner
   double buffer = 0.0;                         // b >= 0 [m]
   std::span<const ContactPair> excluded = {};  // sorted, a < b: removed from the output
+  // The sweep is cut into chunks of whole cells (a fixed count of boxes each), each with its own cursors
+  // and pair buffer; with a runner they run concurrently. The pairs are sorted afterwards, so the output
+  // is the same with or without a runner, on any thread count.
+  ChunkRunner run_chunks = nullptr;
 };
 
 // Scratch and output, reused between calls: vectors are resized, never shrunk, so once the capacities
@@ -73,15 +82,17 @@ struct BroadPhaseWorkspace {
     uint64_t key;  // cell key
     int32_t box;   // index into the input boxes
   };
-  std::vector<Entry> entries, entries_tmp;  // boxes by cell key
-  std::vector<Entry> id_entries;            // boxes by id
-  std::vector<double> sorted_box;           // 6 per entry in cell order: lo'xyz hi'xyz
-  std::vector<uint32_t> sorted_rank;        // id rank per entry in cell order
-  std::vector<uint32_t> rank_of_box;        // id rank per input box
-  std::vector<int32_t> rank_id;             // the id of each rank
-  std::vector<uint64_t> keys, keys_tmp;     // pair keys rank_a << 32 | rank_b
-  std::vector<size_t> count;                // radix histograms, pair-sort offsets
-  std::vector<ContactPair> pairs;           // the output of the last call
+  std::vector<Entry> entries, entries_tmp;        // boxes by cell key
+  std::vector<Entry> id_entries;                  // boxes by id
+  std::vector<double> sorted_box;                 // 6 per entry in cell order: lo'xyz hi'xyz
+  std::vector<uint32_t> sorted_rank;              // id rank per entry in cell order
+  std::vector<uint32_t> rank_of_box;              // id rank per input box
+  std::vector<int32_t> rank_id;                   // the id of each rank
+  std::vector<uint64_t> keys, keys_tmp;           // pair keys rank_a << 32 | rank_b
+  std::vector<size_t> count;                      // radix histograms, pair-sort offsets
+  std::vector<ContactPair> pairs;                 // the output of the last call
+  std::vector<std::vector<uint64_t>> chunk_keys;  // pair keys found by each sweep chunk
+  std::vector<size_t> chunk_begin, chunk_tested;  // first entry of each chunk (+ end), tests per chunk
   size_t grows = 0;
 };
 
@@ -93,7 +104,7 @@ struct BroadPhaseStats {
   double cell_size = 0;  // c [m]
 };
 
-// The pairs described above, into ws.pairs. Sequential.
+// The pairs described above, into ws.pairs. Sequential but for the sweep (args.run_chunks).
 BroadPhaseStats contact_broad_phase(const BroadPhaseArgs& args, BroadPhaseWorkspace& ws);
 
 // Reference: the same pair set (same inflation, same closed test, same exclusion and order) by testing all

@@ -306,6 +306,15 @@ bool ContactSystem::detection_needed() {
   return kernels::contact_redetect_needed(std::sqrt(d2), buffer_);
 }
 
+namespace {
+// The broad phase's sweep chunks on the task pool (the kernel's output does not depend on it).
+void run_chunks_in_parallel(size_t count, kernels::ChunkBody body, void* context) {
+  parallel_for(count, 1, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) body(context, k);
+  });
+}
+}  // namespace
+
 void ContactSystem::detect() {
   Table& nodes = store_.table(solid::node_table);
   const auto x = nodes.span<const double>("x");
@@ -317,6 +326,7 @@ void ContactSystem::detect() {
   });
   kernels::BroadPhaseArgs args{candidates_, std::span<const double>(lo_).first(3 * n),
                                std::span<const double>(hi_).first(3 * n), buffer_};
+  args.run_chunks = &run_chunks_in_parallel;
   kernels::contact_broad_phase(args, broad_);
   // Pairs still tied at some vertex, or both in one body's continuous part, are the continuum's (header).
   const auto group = grouping_->node_vertex();

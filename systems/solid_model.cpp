@@ -26,7 +26,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   build_force_slots();
   compute_mass_and_stable_dt();
   create_bookkeeping_tables();
-  if (spec_.fracture) apply_initial_cracks();
+  if (spec_.fracture) apply_initial_cracks(zone);
   if (spec_.contact) build_contact(mesh);
   store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
 

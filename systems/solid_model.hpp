@@ -68,7 +68,7 @@ class SolidModel : public Model {
   void build_force_slots();
   void compute_mass_and_stable_dt();
   void create_bookkeeping_tables();
-  void apply_initial_cracks();
+  void apply_initial_cracks(const std::vector<uint8_t>& zone);  // zone: 1 per tet, in the fracture zone
   void add_crack_faces();  // two loaded faces per joint, pressed once the joint is broken
   void build_contact(const TetMesh& mesh);
   std::optional<std::string> check_energy(const StepContext& after);

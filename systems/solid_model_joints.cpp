@@ -1,5 +1,6 @@
 // SolidModel set-up of the fracture zone: the joint table, joint materials per pair of tet materials,
 // the in-situ state of every joint, and the bookkeeping tables (fracture events, energy integrals).
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -140,10 +141,24 @@ namespace rift {
 // Joints on the planes of solid.fracture.initial_cracks start broken: mode 3 in the joint table and one
 // row each at the head of the fracture log (step -1, time 0), so the mesh conversion and the contact
 // see them like any break, while the fracture energy (joint work) stays zero.
-void SolidModel::apply_initial_cracks() {
+void SolidModel::apply_initial_cracks(const std::vector<uint8_t>& zone) {
   if (spec_.fracture->initial_cracks.empty()) return;
   Table& joints = store_.table(solid::joint_table);
   const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  // A vertex that a tet outside the zone uses has one shared node for all such tets: where they touch
+  // the crack from both sides (by an edge or a vertex), that node holds the crack shut.
+  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  const auto tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  std::vector<uint8_t> outside_vertex;
+  for (size_t e = 0; e < zone.size(); ++e)
+    if (!zone[e])
+      for (int k = 0; k < 4; ++k) {
+        const auto v = static_cast<size_t>(node_vertex[tet_nodes[4 * e + k]]);
+        if (v >= outside_vertex.size()) outside_vertex.resize(v + 1, 0);
+        outside_vertex[v] = 1;
+      }
+  size_t tied = 0;
+  const double* first_tied = nullptr;
   const auto conn = joints.span<const int32_t>("nodes");
   auto broken = joints.span<uint8_t>("broken");
   Table& events = store_.table(solid::event_table);
@@ -172,6 +187,13 @@ void SolidModel::apply_initial_cracks() {
       on_crack = on_crack || on;
     }
     if (!on_crack) continue;
+    for (int a = 0; a < 3; ++a) {
+      const auto v = static_cast<size_t>(node_vertex[conn[6 * j + a]]);
+      if (v < outside_vertex.size() && outside_vertex[v]) {
+        if (!first_tied) first_tied = p[a];
+        ++tied;
+      }
+    }
     broken[j] = 3;
     const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
     const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
@@ -195,6 +217,13 @@ void SolidModel::apply_initial_cracks() {
         "solid.fracture.initial_cracks: no joint lies on any of the planes; the mesh needs faces on "
         "the crack plane (a lattice mesh, or a mesh file with the crack as an internal surface), and "
         "the plane must cross the fracture zone");
+  if (tied > 0)
+    throw Error(fmt::format(
+        "solid.fracture.initial_cracks: {} corners of crack joints are vertices that tets outside the "
+        "fracture zone share (first at ({:.6g}, {:.6g}, {:.6g}) m), so the crack is held shut there. Make "
+        "solid.fracture.box_min / box_max (or regions) take in every tet that touches the crack, e.g. one "
+        "whole layer of elements on each side of it",
+        tied, first_tied[0], first_tied[1], first_tied[2]));
   spdlog::info("solid: {} joints start broken on {} initial crack plane(s)", cracked,
                spec_.fracture->initial_cracks.size());
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "engine/core/error.hpp"
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
@@ -19,9 +20,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The Sneddon scene at 4 cells per half-length (19,200 tets), cut to a few hundred steps.
+// The Sneddon scene at 4 cells per half-length (19,200 tets; the zone one cell layer on each side of the
+// crack), cut to a few hundred steps.
 Scene small_sneddon(std::vector<std::string> more = {}) {
-  std::vector<std::string> o{"mesh.generate.cells=[40, 80, 1]", "time.end=1.5e-3", "output.interval=5.0e-4"};
+  std::vector<std::string> o{"mesh.generate.cells=[40, 80, 1]", "solid.fracture.box_min=[-1, -0.225, -1]",
+                             "solid.fracture.box_max=[1.25, 0.225, 1]", "time.end=1.5e-3",
+                             "output.interval=5.0e-4"};
   o.insert(o.end(), more.begin(), more.end());
   return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/sneddon_plane_strain.yaml", o);
 }
@@ -95,6 +99,19 @@ TEST(CrackPressure, PressesTheFacesOfBrokenJointsOnlyAndOpensTheCrack) {
   // 5 %, the bound of the stability tests: the pressure is a step at t = 0, whose first steps the
   // central difference books to O(dt) (3 % after 50 steps here; the full Sneddon run ends at 1e-8).
   EXPECT_LT(std::abs(e.balance_error()), 0.05 * e.external_work);
+}
+
+TEST(InitialCracks, ACrackThatTetsOutsideTheZoneTouchIsAnError) {
+  // A zone of only the tets with a face on the crack: the tets above and below that touch the crack by
+  // an edge or a vertex share its nodes and would hold it shut.
+  try {
+    start(small_sneddon(
+        {"solid.fracture.box_min=[-1, -0.075, -1]", "solid.fracture.box_max=[1.25, 0.075, 1]"}));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("held shut"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("solid.fracture.box_min"), std::string::npos) << e.what();
+  }
 }
 
 TEST(CrackPressure, AJointThatBreaksIsPressedFromTheNextStep) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "bench/bench_common.hpp"
 #include "engine/scene/load_scene.hpp"
@@ -66,15 +67,37 @@ rift::Simulation& simulation(double tets, int threads, bool joints) {
   return *cache.sim;
 }
 
+std::vector<double> system_seconds(rift::Simulation& sim) {
+  std::vector<double> s;
+  for (const auto& t : sim.graph().timings()) s.push_back(t.seconds);
+  return s;
+}
+
 void BM_SolidStep(benchmark::State& state) {
   const double target = rift::bench::tiny() ? 1e3 : static_cast<double>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const bool joints = state.range(2) != 0;
   rift::Simulation& sim = simulation(target, threads, joints);
   const size_t tets = sim.world().store.table("solid_tet").size();
+  const std::vector<double> before = system_seconds(sim);
   for (auto _ : state) sim.step_once();
+  const std::vector<double> after = system_seconds(sim);
   state.counters["tets"] = static_cast<double>(tets);
   if (joints) state.counters["joints"] = static_cast<double>(sim.world().store.table("solid_joint").size());
+  // Wall time inside each system per item (ns). At 1 thread the systems run one after another, so these
+  // split the step; at 2 threads tet and joint forces may overlap in the graph.
+  const double steps = static_cast<double>(state.iterations());
+  auto per_item = [&](const char* system, const char* table) {
+    const size_t items = sim.world().store.has(table) ? sim.world().store.table(table).size() : 0;
+    const auto& timings = sim.graph().timings();
+    for (size_t i = 0; i < timings.size(); ++i)
+      if (timings[i].name == system && items > 0)
+        state.counters[std::string("ns_per_") + (table + 6)] =
+            1e9 * (after[i] - before[i]) / (steps * static_cast<double>(items));
+  };
+  per_item("tet_forces", "solid_tet");
+  per_item("joint_forces", "solid_joint");
+  per_item("node_integration", "solid_node");
   state.counters["threads"] = threads;
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * tets));
 }

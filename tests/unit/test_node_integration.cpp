@@ -1,0 +1,143 @@
+// The node pass (kernels/node_integration.hpp): gathered forces, central difference, held components and
+// the work of each source, against a direct evaluation, on random slot lists; and the same bits whatever
+// the split of the node range (the kernel prefetches ahead inside its range and must not read past it).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "kernels/node_integration.hpp"
+
+namespace rift::kernels {
+namespace {
+
+// Random nodes with 1 tet slot, 0-3 joint slots and 0-1 face slots each (grouped by source, as set-up
+// builds them), random forces, masses, and a few held components (fixed or driven).
+struct Problem {
+  size_t nodes = 0;
+  std::vector<double> tet_force, joint_force, face_force;
+  int64_t first_slot[4] = {};
+  std::vector<int32_t> node_range, slots;
+  std::vector<double> x, v, f, mass, inv_mass, prescribed;
+  std::vector<uint8_t> free_mask;
+  std::vector<int32_t> held;
+
+  explicit Problem(size_t n) : nodes(n) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::uniform_int_distribution<int> joints_per_node(0, 3), faces_per_node(0, 1);
+    const size_t tet_slots = n, joint_slots = 2 * n, face_slots = n / 2;
+    for (auto* column : {&tet_force, &joint_force, &face_force}) column->clear();
+    for (size_t k = 0; k < 3 * tet_slots; ++k) tet_force.push_back(1e3 * unit(rng));
+    for (size_t k = 0; k < 3 * joint_slots; ++k) joint_force.push_back(1e3 * unit(rng));
+    for (size_t k = 0; k < 3 * face_slots; ++k) face_force.push_back(1e2 * unit(rng));
+    first_slot[1] = static_cast<int64_t>(tet_slots);
+    first_slot[2] = first_slot[1] + static_cast<int64_t>(joint_slots);
+    first_slot[3] = first_slot[2] + static_cast<int64_t>(face_slots);
+    std::uniform_int_distribution<int64_t> joint(0, static_cast<int64_t>(joint_slots) - 1),
+        face(0, static_cast<int64_t>(face_slots) - 1);
+    for (size_t i = 0; i < n; ++i) {
+      node_range.push_back(static_cast<int32_t>(slots.size()));
+      slots.push_back(static_cast<int32_t>(i));  // its tet corner
+      for (int j = joints_per_node(rng); j > 0; --j)
+        slots.push_back(static_cast<int32_t>(first_slot[1] + joint(rng)));
+      for (int j = faces_per_node(rng); j > 0; --j)
+        slots.push_back(static_cast<int32_t>(first_slot[2] + face(rng)));
+      node_range.push_back(static_cast<int32_t>(slots.size()));
+    }
+    for (size_t k = 0; k < 3 * n; ++k) {
+      x.push_back(unit(rng));
+      v.push_back(0.1 * unit(rng));
+      free_mask.push_back(k % 17 == 0 ? 0 : 1);
+      held.push_back(k % 34 == 0 ? 0 : -1);  // half of the held components are driven by condition 0
+    }
+    f.assign(3 * n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+      mass.push_back(1e-3 * (1.5 + unit(rng)));
+      inv_mass.push_back(i % 50 == 0 ? 0.0 : 1.0 / mass.back());  // some massless nodes
+    }
+    prescribed = {0.25, -0.5, 0.125};
+  }
+
+  NodeIntegrationArgs args() {
+    return {1e-6, {0.0, 0.0, -9.81}, x, v, f, mass, inv_mass, free_mask, held, prescribed};
+  }
+  ForceSlots force_slots() const {
+    return {{tet_force, joint_force, face_force},
+            {first_slot[0], first_slot[1], first_slot[2], first_slot[3]},
+            node_range,
+            slots};
+  }
+  const double* slot_force(int32_t slot) const {
+    if (slot < first_slot[1]) return &tet_force[3 * static_cast<size_t>(slot)];
+    if (slot < first_slot[2]) return &joint_force[3 * static_cast<size_t>(slot - first_slot[1])];
+    return &face_force[3 * static_cast<size_t>(slot - first_slot[2])];
+  }
+};
+
+TEST(NodeIntegration, MatchesDirectEvaluation) {
+  Problem p(2000);
+  const std::vector<double> x0 = p.x, v0 = p.v;
+  const NodeIntegrationArgs a = p.args();
+  const NodeStepResult r = integrate_nodes(a, p.force_slots(), 0, p.nodes);
+  EXPECT_EQ(r.non_finite, 0u);
+  double work[3] = {0.0, 0.0, 0.0};
+  for (size_t n = 0; n < p.nodes; ++n)
+    for (int c = 0; c < 3; ++c) {
+      double by_source[3] = {0.0, 0.0, 0.0};
+      for (int32_t k = p.node_range[2 * n]; k < p.node_range[2 * n + 1]; ++k) {
+        const int32_t slot = p.slots[k];
+        const int src = (slot >= p.first_slot[1]) + (slot >= p.first_slot[2]);
+        by_source[src] += p.slot_force(slot)[c];
+      }
+      const size_t i = 3 * n + c;
+      const double total = by_source[0] + by_source[1] + by_source[2];
+      const double held = p.held[i] >= 0 ? p.prescribed[c] : 0.0;
+      const double vn = p.free_mask[i] ? v0[i] + a.dt * (total * p.inv_mass[n] + a.gravity[c]) : held;
+      const double tol = 1e-12 * (1.0 + std::abs(vn));
+      EXPECT_NEAR(p.f[i], total, 1e-12 * (1.0 + std::abs(total)));
+      EXPECT_NEAR(p.v[i], vn, tol);
+      EXPECT_NEAR(p.x[i], x0[i] + a.dt * vn, 1e-15);
+      const double dx = 0.5 * a.dt * (v0[i] + vn);
+      work[0] += by_source[0] * dx;
+      work[1] += by_source[1] * dx;
+      work[2] += p.free_mask[i]
+                     ? (by_source[2] + p.mass[n] * a.gravity[c]) * dx
+                     : 0.5 * p.mass[n] * (vn * vn - v0[i] * v0[i]) - (by_source[0] + by_source[1]) * dx;
+    }
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.work[k], work[k], 1e-12 * (1e-9 + std::abs(work[k]))) << k;
+  EXPECT_EQ(r.work[3], 0.0);  // no contact column
+}
+
+// Blocks of any size give the same bits (the prefetch near a block's end stays inside it).
+TEST(NodeIntegration, SameBitsForAnySplit) {
+  Problem whole(3001), split(3001);
+  const NodeStepResult r = integrate_nodes(whole.args(), whole.force_slots(), 0, whole.nodes);
+  NodeStepResult sum;
+  const NodeIntegrationArgs a = split.args();
+  const ForceSlots s = split.force_slots();
+  for (size_t begin = 0, size = 1; begin < split.nodes; begin += size, size = size * 3 + 1)
+    sum += integrate_nodes(a, s, begin, std::min(split.nodes, begin + size));
+  EXPECT_EQ(whole.x, split.x);
+  EXPECT_EQ(whole.v, split.v);
+  EXPECT_EQ(whole.f, split.f);
+  EXPECT_EQ(r.non_finite, sum.non_finite);
+}
+
+TEST(NodeIntegration, CountsNonFiniteNodes) {
+  Problem p(100);
+  p.joint_force[3 * 5 + 1] = std::nan("");
+  size_t hit = 0;  // nodes that gather joint slot 5 and integrate its y component
+  for (size_t n = 0; n < p.nodes; ++n)
+    for (int32_t k = p.node_range[2 * n]; k < p.node_range[2 * n + 1]; ++k)
+      if (p.slots[k] == p.first_slot[1] + 5 && p.free_mask[3 * n + 1]) {
+        ++hit;
+        break;
+      }
+  const NodeStepResult r = integrate_nodes(p.args(), p.force_slots(), 0, p.nodes);
+  EXPECT_EQ(r.non_finite, hit);
+}
+
+}  // namespace
+}  // namespace rift::kernels

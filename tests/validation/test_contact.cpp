@@ -1,6 +1,7 @@
 // Contact validation (issue 4): the scenes scenes/validation/contact_*.yaml run through the Simulation the
 // CLI uses. Each tolerance is stated with the reason it is fair.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <set>
@@ -264,7 +265,7 @@ TEST(ContactValidation, AStepAboveTheContactLimitStopsWithADiagnosis) {
   }
   scene.time.dt = 2.0 * contact_dt;
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "rift_contact_unstable";
+  const fs::path dir = fs::temp_directory_path() / ("rift_contact_unstable_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   try {
     test::run_scene(scene, dir, 1);
@@ -283,8 +284,8 @@ TEST(ContactValidation, AStepAboveTheContactLimitStopsWithADiagnosis) {
 TEST(ContactValidation, RestartMidSlideIsBitwiseIdentical) {
   const Scene scene = validation_scene("contact_incline.yaml", {"time.end=0.02", "output.interval=0.005"});
   namespace fs = std::filesystem;
-  const fs::path a = fs::temp_directory_path() / "rift_contact_straight",
-                 b = fs::temp_directory_path() / "rift_contact_restarted";
+  const fs::path a = fs::temp_directory_path() / ("rift_contact_straight_" + std::to_string(::getpid())),
+                 b = fs::temp_directory_path() / ("rift_contact_restarted_" + std::to_string(::getpid()));
   fs::remove_all(a);
   fs::remove_all(b);
   const RunResult straight = test::run_scene(scene, a, 2);

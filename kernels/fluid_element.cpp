@@ -133,22 +133,34 @@ inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, d
     if (!a.source.empty()) cell_force[d] += a.source[3 * t + d];
     if (sigma != 0.0 && !a.target.empty()) cell_force[d] += sigma * a.target[3 * t + d];
   }
+  // Node values into locals first: the outputs may not be proven disjoint from the inputs, and the
+  // compiler would reload them inside the 4 x 4 loop.
+  double uo[12], bf[12];
+  const bool with_body_force = !a.body_force.empty();
+  for (int n = 0; n < 4; ++n)
+    for (int d = 0; d < 3; ++d) {
+      const size_t i = 3 * static_cast<size_t>(nodes[n]) + d;
+      uo[3 * n + d] = a.u_old[i];
+      bf[3 * n + d] = with_body_force ? a.body_force[i] : 0.0;
+    }
+  double kmat[16], krhs[12];
   for (int i = 0; i < 4; ++i) {
     double r[3] = {0.0, 0.0, 0.0};
     for (int j = 0; j < 4; ++j) {
       const double l = a.mu * k[4 * i + j] + a.rho * c[4 * i + j] + s[4 * i + j];
       double kij = rdt * m[4 * i + j] + a.theta * l;
       if (i == j) kij += sigma * 0.25 * v;
-      km[4 * i + j] = kij;
+      kmat[4 * i + j] = kij;
       const double rij = rdt * m[4 * i + j] - (1.0 - a.theta) * l;
-      const size_t nj = static_cast<size_t>(nodes[j]);
       for (int d = 0; d < 3; ++d) {
-        r[d] += rij * a.u_old[3 * nj + d];
-        if (!a.body_force.empty()) r[d] += m[4 * i + j] * a.body_force[3 * nj + d];
+        r[d] += rij * uo[3 * j + d];
+        if (with_body_force) r[d] += m[4 * i + j] * bf[3 * j + d];
       }
     }
-    for (int d = 0; d < 3; ++d) kr[3 * i + d] = r[d] + 0.25 * v * cell_force[d];
+    for (int d = 0; d < 3; ++d) krhs[3 * i + d] = r[d] + 0.25 * v * cell_force[d];
   }
+  std::copy(kmat, kmat + 16, km);
+  std::copy(krhs, krhs + 12, kr);
   return true;
 }
 
@@ -167,14 +179,17 @@ void fluid_assemble_momentum(const FluidMomentumArgs& a) {
   }
 }
 
-void fluid_momentum_elements(const FluidMomentumArgs& a, std::span<double> elem_matrix,
-                             std::span<double> elem_rhs, size_t begin, size_t end) {
+void fluid_momentum_elements(const FluidMomentumArgs& a, const ElementOutput& out, size_t begin, size_t end) {
   for (size_t t = begin; t < end; ++t) {
-    double* km = &elem_matrix[16 * t];
-    double* kr = &elem_rhs[12 * t];
+    double km[16], kr[12];
     if (!momentum_element(a, t, km, kr)) {
       std::fill(km, km + 16, 0.0);
       std::fill(kr, kr + 12, 0.0);
+    }
+    for (int e = 0; e < 16; ++e) out.matrix[out.entry_pos[16 * t + e]] = km[e];
+    for (int i = 0; i < 4; ++i) {
+      double* r = &out.corner[3 * static_cast<size_t>(out.corner_pos[4 * t + i])];
+      for (int d = 0; d < 3; ++d) r[d] = kr[3 * i + d];
     }
   }
 }
@@ -219,20 +234,21 @@ void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
   laplacian_pass<false>(a);
 }
 
-void scalar_laplacian_elements(const ScalarLaplacianArgs& a, std::span<double> elem_matrix, size_t begin,
+void scalar_laplacian_elements(const ScalarLaplacianArgs& a, const ElementOutput& out, size_t begin,
                                size_t end) {
   for (size_t t = begin; t < end; ++t) {
     const int32_t* nodes = &a.tet_nodes[4 * t];
-    double* k = &elem_matrix[16 * t];
+    double k[16];
     const double v = a.volume[t];
-    if (v <= 0.0) {
+    if (v > 0.0) {
+      p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+          if (a.fixed[nodes[i]] || a.fixed[nodes[j]]) k[4 * i + j] = 0.0;
+    } else {
       std::fill(k, k + 16, 0.0);
-      continue;
     }
-    p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        if (a.fixed[nodes[i]] || a.fixed[nodes[j]]) k[4 * i + j] = 0.0;
+    for (int e = 0; e < 16; ++e) out.matrix[out.entry_pos[16 * t + e]] = k[e];
   }
 }
 
@@ -287,12 +303,12 @@ void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const doub
   }
 }
 
-void fluid_pressure_rhs_elements(const FluidPressureRhsArgs& a, std::span<double> elem, size_t begin,
+void fluid_pressure_rhs_elements(const FluidPressureRhsArgs& a, const ElementOutput& out, size_t begin,
                                  size_t end) {
   for (size_t t = begin; t < end; ++t) {
     double x[4] = {0.0, 0.0, 0.0, 0.0};
     pressure_rhs_element(a, t, x);
-    for (int q = 0; q < 4; ++q) elem[4 * t + q] = -x[q];
+    for (int q = 0; q < 4; ++q) out.corner[out.corner_pos[4 * t + q]] = -x[q];
   }
 }
 
@@ -322,9 +338,16 @@ void p1_weighted_gradient(std::span<const int32_t> tet_nodes, std::span<const do
   }
 }
 
-void p1_weighted_gradient_elements(const WeightedGradientArgs& a, std::span<double> elem, size_t begin,
+void p1_weighted_gradient_elements(const WeightedGradientArgs& a, const ElementOutput& out, size_t begin,
                                    size_t end) {
-  for (size_t t = begin; t < end; ++t) weighted_gradient_element(a, t, &elem[3 * t]);
+  for (size_t t = begin; t < end; ++t) {
+    double f_gp[3];
+    weighted_gradient_element(a, t, f_gp);
+    for (int n = 0; n < 4; ++n) {
+      double* r = &out.corner[3 * static_cast<size_t>(out.corner_pos[4 * t + n])];
+      for (int d = 0; d < 3; ++d) r[d] = f_gp[d];
+    }
+  }
 }
 
 }  // namespace rift::kernels

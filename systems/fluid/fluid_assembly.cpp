@@ -9,57 +9,54 @@ FluidAssembly::FluidAssembly(std::span<const int32_t> tet_nodes, std::span<const
                              const CsrMatrix& pattern, size_t n_nodes)
     : n_tets_(tet_nodes.size() / 4), n_nodes_(n_nodes) {
   entry_ptr_.assign(pattern.nnz() + 1, 0);
-  entry_idx_.assign(slot.size(), 0);
-  kernels::build_gather_map(slot, entry_ptr_, entry_idx_);
+  entry_pos_.assign(slot.size(), 0);
+  kernels::build_gather_positions(slot, entry_ptr_, entry_pos_);
   node_ptr_.assign(n_nodes + 1, 0);
-  corner_idx_.assign(tet_nodes.size(), 0);
-  kernels::build_gather_map(tet_nodes, node_ptr_, corner_idx_);
-  // Corners come in ascending order, so their tets do too (and a tet holds a node once).
-  tet_idx_.resize(corner_idx_.size());
-  for (size_t k = 0; k < corner_idx_.size(); ++k) tet_idx_[k] = corner_idx_[k] / 4;
+  corner_pos_.assign(tet_nodes.size(), 0);
+  kernels::build_gather_positions(tet_nodes, node_ptr_, corner_pos_);
   elem_matrix_.assign(16 * n_tets_, 0.0);
-  elem_rhs_.assign(12 * n_tets_, 0.0);
+  elem_corner_.assign(12 * n_tets_, 0.0);
 }
 
 void FluidAssembly::gather_entries(std::span<double> values) {
   parallel_for(values.size(), kEntryGrain, [&](size_t begin, size_t end) {
-    kernels::gather_sum(entry_ptr_, entry_idx_, elem_matrix_, values, begin, end);
+    kernels::gather_sum(entry_ptr_, elem_matrix_, values, begin, end);
   });
 }
 
 void FluidAssembly::momentum(const kernels::FluidMomentumArgs& a) {
-  parallel_for(n_tets_, kTetGrain, [&](size_t begin, size_t end) {
-    kernels::fluid_momentum_elements(a, elem_matrix_, elem_rhs_, begin, end);
-  });
+  const kernels::ElementOutput out = output();
+  parallel_for(n_tets_, kTetGrain,
+               [&](size_t begin, size_t end) { kernels::fluid_momentum_elements(a, out, begin, end); });
   gather_entries(a.matrix_values);
   parallel_for(n_nodes_, kNodeGrain, [&](size_t begin, size_t end) {
-    kernels::gather_sum3(node_ptr_, corner_idx_, elem_rhs_, a.rhs, begin, end);
+    kernels::gather_sum3(node_ptr_, elem_corner_, a.rhs, begin, end);
   });
 }
 
 void FluidAssembly::laplacian_matrix(const kernels::ScalarLaplacianArgs& a) {
-  parallel_for(n_tets_, kTetGrain, [&](size_t begin, size_t end) {
-    kernels::scalar_laplacian_elements(a, elem_matrix_, begin, end);
-  });
+  const kernels::ElementOutput out = output();
+  parallel_for(n_tets_, kTetGrain,
+               [&](size_t begin, size_t end) { kernels::scalar_laplacian_elements(a, out, begin, end); });
   gather_entries(a.matrix_values);
   kernels::scalar_laplacian_fix_rows(a);
 }
 
 void FluidAssembly::pressure_rhs(const kernels::FluidPressureRhsArgs& a, std::span<double> rhs) {
-  parallel_for(n_tets_, kTetGrain, [&](size_t begin, size_t end) {
-    kernels::fluid_pressure_rhs_elements(a, elem_rhs_, begin, end);
-  });
+  const kernels::ElementOutput out = output();
+  parallel_for(n_tets_, kTetGrain,
+               [&](size_t begin, size_t end) { kernels::fluid_pressure_rhs_elements(a, out, begin, end); });
   parallel_for(n_nodes_, kNodeGrain, [&](size_t begin, size_t end) {
-    kernels::gather_sum(node_ptr_, corner_idx_, elem_rhs_, rhs, begin, end);
+    kernels::gather_sum(node_ptr_, elem_corner_, rhs, begin, end);
   });
 }
 
-void FluidAssembly::weighted_gradient(const kernels::WeightedGradientArgs& a, std::span<double> out) {
-  parallel_for(n_tets_, kTetGrain, [&](size_t begin, size_t end) {
-    kernels::p1_weighted_gradient_elements(a, elem_rhs_, begin, end);
-  });
+void FluidAssembly::weighted_gradient(const kernels::WeightedGradientArgs& a, std::span<double> grad) {
+  const kernels::ElementOutput out = output();
+  parallel_for(n_tets_, kTetGrain,
+               [&](size_t begin, size_t end) { kernels::p1_weighted_gradient_elements(a, out, begin, end); });
   parallel_for(n_nodes_, kNodeGrain, [&](size_t begin, size_t end) {
-    kernels::gather_sum3(node_ptr_, tet_idx_, elem_rhs_, out, begin, end);
+    kernels::gather_sum3(node_ptr_, elem_corner_, grad, begin, end);
   });
 }
 

@@ -1,12 +1,12 @@
 #pragma once
 // The fluid's per-tet loops that scatter into shared rows (momentum matrix and right-hand side, pressure
 // matrix, pressure right-hand side, projected gradients), run in parallel and bitwise deterministic: an
-// element pass over fixed blocks of tets writes every tet's contributions into its own rows of a buffer,
-// then a gather pass over fixed blocks of targets (CSR entries, nodes) sums each target's contributions
-// in tet order (kernels/element_gather.hpp). No double is accumulated across threads, so the result is
-// the same on 1, 2 or 8 threads, and equal to the sequential loop's bit for bit (the order is the same).
-// Maps and buffers are built once for a fixed mesh and pattern; the calls allocate nothing. Loops run in
-// the caller's TBB arena (engine/schedule/parallel.hpp).
+// element pass over fixed blocks of tets writes every tet's contributions into positions of its own in a
+// buffer sorted by target, then a gather pass over fixed blocks of targets (CSR entries, nodes) sums each
+// target's run of contributions, which lie in tet order (kernels/element_gather.hpp). No double is
+// accumulated across threads, so the result is the same on 1, 2 or 8 threads, and equal to the sequential
+// loop's bit for bit (the order is the same). Maps and buffers are built once for a fixed mesh and pattern;
+// the calls allocate nothing. Loops run in the caller's TBB arena (engine/schedule/parallel.hpp).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -37,11 +37,13 @@ class FluidAssembly {
 
  private:
   void gather_entries(std::span<double> values);
+  kernels::ElementOutput output() { return {entry_pos_, corner_pos_, elem_matrix_, elem_corner_}; }
 
   size_t n_tets_ = 0, n_nodes_ = 0;
-  // Per CSR entry, its tet-local positions 16 t + 4 i + j; per node, its corners 4 t + a and its tets t.
-  std::vector<int32_t> entry_ptr_, entry_idx_, node_ptr_, corner_idx_, tet_idx_;
-  std::vector<double> elem_matrix_, elem_rhs_;  // 16 and 12 per tet
+  // Runs per CSR entry (of the tets' 16 t + 4 i + j) and per node (of their corners 4 t + a), and where
+  // each of those sources goes.
+  std::vector<int32_t> entry_ptr_, entry_pos_, node_ptr_, corner_pos_;
+  std::vector<double> elem_matrix_, elem_corner_;  // 16 and 12 per tet
 };
 
 }  // namespace rift::fluid

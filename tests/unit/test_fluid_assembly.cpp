@@ -126,12 +126,12 @@ Assembled assemble(const Problem& p, int threads) {
   return r;
 }
 
-TEST(FluidAssembly, GatherMapListsSourcesInAscendingOrder) {
+TEST(FluidAssembly, GatherPositionsSortByTargetThenSource) {
   const std::vector<int32_t> target_of{2, 0, 2, 1, 0, 2};
-  std::vector<int32_t> ptr(4), idx(6);
-  kernels::build_gather_map(target_of, ptr, idx);
+  std::vector<int32_t> ptr(4), pos(6);
+  kernels::build_gather_positions(target_of, ptr, pos);
   EXPECT_EQ(ptr, (std::vector<int32_t>{0, 2, 3, 6}));
-  EXPECT_EQ(idx, (std::vector<int32_t>{1, 4, 3, 0, 2, 5}));
+  EXPECT_EQ(pos, (std::vector<int32_t>{3, 0, 4, 2, 1, 5}));
 }
 
 TEST(FluidAssembly, BitwiseIdenticalOn1248ThreadsAndEqualToTheSequentialLoops) {

@@ -19,16 +19,17 @@
 // Byte models (compulsory DRAM traffic of what the code does, double precision, write-allocate counted as
 // a read; node data counted once per node, i.e. perfect reuse of the node gathers). Per tet t, node n,
 // CSR nonzero z (on these meshes nodes ~ t/6, nonzeros ~ 15 n ~ 2.5 t):
-//   momentum (two pass): element pass reads nodes 16 + volume 8 + gradients 96 + tau_s 8 + sigma 8 +
-//     target 24 + source 24 = 184 B/t and u^n, w, p 56 B/n, writes 16 + 12 element doubles 224 B/t (x2);
-//     the entry gather reads its map 64 B/t + 4 B/z and the 128 B/t of element entries, writes 8 B/z (x2);
-//     the node gather reads its map 16 B/t + 4 B/n and the 96 B/t of element rhs, writes 24 B/n (x2).
-//     Total 184 + 448 + 64 + 128 + 16 + 96 = 936 B/t + 20 B/z + 108 B/n  (~1,004 B/t here).
+//   momentum (two pass): the element pass reads nodes 16 + volume 8 + gradients 96 + tau_s 8 + sigma 8 +
+//     target 24 + source 24 = 184 B/t, u^n, w, p 56 B/n and its write positions 64 + 16 B/t, and writes
+//     16 + 12 element doubles 224 B/t (x2, write-allocate) into the buffer sorted by target; the entry
+//     gather streams the 128 B/t of entries and the run pointers 4 B/z and writes 8 B/z (x2); the node
+//     gather streams the 96 B/t of rhs, 4 B/n of pointers and writes 24 B/n (x2).
+//     Total 184 + 80 + 448 + 128 + 96 = 936 B/t + 20 B/z + 108 B/n  (~1,004 B/t here).
 //   momentum (sequential scatter): 184 B/t + 56 B/n + slots 64 B/t, zeroing then scatter of the matrix
 //     16 + 16 B/z and of the rhs 48 + 48 B/n = 248 B/t + 32 B/z + 152 B/n  (~353 B/t).
-//   pressure matrix: element pass reads nodes 16 + volume 8 + gradients 96 + coef 8 = 128 B/t and fixed
-//     1 B/n, writes 128 B/t (x2); gather as above 64 + 128 B/t + 4 + 16 B/z; the unit diagonals read
-//     fixed and the diagonal slots 5 B/n. Total 576 B/t + 20 B/z + 6 B/n  (~627 B/t).
+//   pressure matrix: element pass reads nodes 16 + volume 8 + gradients 96 + coef 8 = 128 B/t, fixed
+//     1 B/n and positions 64 B/t, writes 128 B/t (x2); gather 128 B/t + 4 + 16 B/z; the unit diagonals
+//     read fixed and the diagonal slots 5 B/n. Total 576 B/t + 20 B/z + 6 B/n  (~627 B/t).
 //   mat-vec: values 8 + columns 4 B/z, row pointers 4 B/row, y 16 B/row (x2), x 8 B/row: 12 B/z + 28 B/row
 //     (~13.9 B/z).
 //   AMG set-up and PCG: not modelled as bytes (hypre's hierarchy is its own); items/s only.

@@ -3,12 +3,12 @@
 // threads, each also as a fraction of the memory roofline (STREAM triad x 4/3 measured in this process,
 // bench_common.hpp):
 //   BM_FluidMomentumAssembly      the momentum (velocity-block) matrix and right-hand side, exactly as the
-//                                 solver runs it (systems/fluid/fluid_assembly.hpp: element pass + gather
-//                                 per CSR entry and per node); items = tets
-//   BM_FluidMomentumAssemblySerial the sequential scatter loop it replaced (kernels::fluid_assemble_momentum
-//                                 after zeroing the outputs), 1 thread; items = tets
-//   BM_FluidPressureMatrixAssembly the pressure matrix sum_t (c + tau_p)_t K^t with Dirichlet rows (element
-//                                 pass + gather + unit diagonals); items = tets
+//                                 solver runs it (systems/fluid/fluid_assembly.hpp: coloured blocks of
+//                                 tets, each scattered in order into the CSR values); items = tets
+//   BM_FluidMomentumAssemblySerial the plain sequential loop (kernels::fluid_assemble_momentum after zeroing
+//                                 the outputs), 1 thread: the reference the colouring must not slow down
+//   BM_FluidPressureMatrixAssembly the pressure matrix sum_t (c + tau_p)_t K^t with Dirichlet rows, coloured
+//                                 as the momentum; items = tets
 //   BM_PressureAmgSetup           BoomerAMG set-up on that matrix; items = unknowns (nodes)
 //   BM_PressurePcgSolve           AMG-PCG solve to 1e-8 from x = 0; items = unknowns per solve, the PCG
 //                                 iterations as a counter (unknown_iterations/s is the rate per iteration)
@@ -19,17 +19,13 @@
 // Byte models (compulsory DRAM traffic of what the code does, double precision, write-allocate counted as
 // a read; node data counted once per node, i.e. perfect reuse of the node gathers). Per tet t, node n,
 // CSR nonzero z (on these meshes nodes ~ t/6, nonzeros ~ 15 n ~ 2.5 t):
-//   momentum (two pass): the element pass reads nodes 16 + volume 8 + gradients 96 + tau_s 8 + sigma 8 +
-//     target 24 + source 24 = 184 B/t, u^n, w, p 56 B/n and its write positions 64 + 16 B/t, and writes
-//     16 + 12 element doubles 224 B/t (x2, write-allocate) into the buffer sorted by target; the entry
-//     gather streams the 128 B/t of entries and the run pointers 4 B/z and writes 8 B/z (x2); the node
-//     gather streams the 96 B/t of rhs, 4 B/n of pointers and writes 24 B/n (x2).
-//     Total 184 + 80 + 448 + 128 + 96 = 936 B/t + 20 B/z + 108 B/n  (~1,004 B/t here).
-//   momentum (sequential scatter): 184 B/t + 56 B/n + slots 64 B/t, zeroing then scatter of the matrix
-//     16 + 16 B/z and of the rhs 48 + 48 B/n = 248 B/t + 32 B/z + 152 B/n  (~353 B/t).
-//   pressure matrix: element pass reads nodes 16 + volume 8 + gradients 96 + coef 8 = 128 B/t, fixed
-//     1 B/n and positions 64 B/t, writes 128 B/t (x2); gather 128 B/t + 4 + 16 B/z; the unit diagonals
-//     read fixed and the diagonal slots 5 B/n. Total 576 B/t + 20 B/z + 6 B/n  (~627 B/t).
+//   momentum: reads nodes 16 + volume 8 + gradients 96 + tau_s 8 + sigma 8 + target 24 + source 24 +
+//     CSR slots 64 = 248 B/t and u^n, w, p 56 B/n; zeroes then scatters into the matrix 16 + 16 B/z and
+//     the rhs 48 + 48 B/n: 248 B/t + 32 B/z + 152 B/n  (~353 B/t here). The same for the sequential loop
+//     and the coloured one (the colouring adds no traffic).
+//   pressure matrix: reads nodes 16 + volume 8 + gradients 96 + coef 8 + slots 64 = 192 B/t and fixed
+//     1 B/n, zeroes then scatters 32 B/z, the unit diagonals read fixed and the diagonal slots 5 B/n:
+//     192 B/t + 32 B/z + 6 B/n  (~273 B/t).
 //   mat-vec: values 8 + columns 4 B/z, row pointers 4 B/row, y 16 B/row (x2), x 8 B/row: 12 B/z + 28 B/row
 //     (~13.9 B/z).
 //   AMG set-up and PCG: not modelled as bytes (hypre's hierarchy is its own); items/s only.
@@ -87,7 +83,7 @@ FluidBench make_bench(int cells) {
   b.pressure = b.momentum;
   b.slot = rift::p1_tet_slots(b.momentum, b.tets);
   b.diag = rift::diagonal_slots(b.momentum);
-  b.assembly = std::make_unique<FluidAssembly>(b.tets, b.slot, b.momentum, b.nn);
+  b.assembly = std::make_unique<FluidAssembly>(b.tets, b.nn);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const auto random = [&](std::vector<double>& v, size_t count, double scale) {
@@ -152,6 +148,7 @@ void counters(benchmark::State& state, const FluidBench& b, size_t items, double
   state.counters["unknowns"] = b.n();
   state.counters["nonzeros"] = b.z();
   state.counters["bytes_per_item"] = bytes_total / static_cast<double>(items);
+  state.counters["colours"] = static_cast<double>(b.assembly->colours());
 }
 
 void BM_FluidMomentumAssembly(benchmark::State& state) {
@@ -162,7 +159,7 @@ void BM_FluidMomentumAssembly(benchmark::State& state) {
     rift::bench::arena(threads).execute([&] { b.assembly->momentum(a); });
     benchmark::ClobberMemory();
   }
-  counters(state, b, b.nt, 936.0 * b.t() + 20.0 * b.z() + 108.0 * b.n(), threads);
+  counters(state, b, b.nt, 248.0 * b.t() + 32.0 * b.z() + 152.0 * b.n(), threads);
 }
 
 void BM_FluidMomentumAssemblySerial(benchmark::State& state) {
@@ -185,7 +182,7 @@ void BM_FluidPressureMatrixAssembly(benchmark::State& state) {
     rift::bench::arena(threads).execute([&] { b.assembly->laplacian_matrix(a); });
     benchmark::ClobberMemory();
   }
-  counters(state, b, b.nt, 576.0 * b.t() + 20.0 * b.z() + 6.0 * b.n(), threads);
+  counters(state, b, b.nt, 192.0 * b.t() + 32.0 * b.z() + 6.0 * b.n(), threads);
 }
 
 // The pressure matrix of BM_FluidPressureMatrixAssembly, assembled once, and a right-hand side of ones on

@@ -167,29 +167,17 @@ inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, d
 }  // namespace
 
 void fluid_assemble_momentum(const FluidMomentumArgs& a) {
-  const size_t n_tets = a.tet_nodes.size() / 4;
-  for (size_t t = 0; t < n_tets; ++t) {
+  fluid_assemble_momentum(a, 0, a.tet_nodes.size() / 4);
+}
+
+void fluid_assemble_momentum(const FluidMomentumArgs& a, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
     double km[16], kr[12];
     if (!momentum_element(a, t, km, kr)) continue;
     for (int e = 0; e < 16; ++e) a.matrix_values[a.slot[16 * t + e]] += km[e];
     for (int i = 0; i < 4; ++i) {
       const size_t ni = static_cast<size_t>(a.tet_nodes[4 * t + i]);
       for (int d = 0; d < 3; ++d) a.rhs[3 * ni + d] += kr[3 * i + d];
-    }
-  }
-}
-
-void fluid_momentum_elements(const FluidMomentumArgs& a, const ElementOutput& out, size_t begin, size_t end) {
-  for (size_t t = begin; t < end; ++t) {
-    double km[16], kr[12];
-    if (!momentum_element(a, t, km, kr)) {
-      std::fill(km, km + 16, 0.0);
-      std::fill(kr, kr + 12, 0.0);
-    }
-    for (int e = 0; e < 16; ++e) out.matrix[out.entry_pos[16 * t + e]] = km[e];
-    for (int i = 0; i < 4; ++i) {
-      double* r = &out.corner[3 * static_cast<size_t>(out.corner_pos[4 * t + i])];
-      for (int d = 0; d < 3; ++d) r[d] = kr[3 * i + d];
     }
   }
 }
@@ -234,21 +222,18 @@ void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
   laplacian_pass<false>(a);
 }
 
-void scalar_laplacian_elements(const ScalarLaplacianArgs& a, const ElementOutput& out, size_t begin,
-                               size_t end) {
+void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end) {
   for (size_t t = begin; t < end; ++t) {
     const int32_t* nodes = &a.tet_nodes[4 * t];
-    double k[16];
     const double v = a.volume[t];
-    if (v > 0.0) {
-      p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-          if (a.fixed[nodes[i]] || a.fixed[nodes[j]]) k[4 * i + j] = 0.0;
-    } else {
-      std::fill(k, k + 16, 0.0);
+    if (v <= 0.0) continue;
+    double k[16];
+    p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
+    for (int i = 0; i < 4; ++i) {
+      if (a.fixed[nodes[i]]) continue;
+      for (int j = 0; j < 4; ++j)
+        if (!a.fixed[nodes[j]]) a.matrix_values[a.slot[16 * t + 4 * i + j]] += k[4 * i + j];
     }
-    for (int e = 0; e < 16; ++e) out.matrix[out.entry_pos[16 * t + e]] = k[e];
   }
 }
 
@@ -294,21 +279,14 @@ inline void weighted_gradient_element(const WeightedGradientArgs& a, size_t t, d
 void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                         std::span<const double> grad, std::span<const double> u, std::span<const double> p,
                         std::span<const double> xi, std::span<const double> tau_p, std::span<double> rhs) {
-  const FluidPressureRhsArgs a{tet_nodes, volume, grad, u, p, xi, tau_p};
-  const size_t n_tets = tet_nodes.size() / 4;
-  for (size_t t = 0; t < n_tets; ++t) {
-    double x[4];
-    if (!pressure_rhs_element(a, t, x)) continue;
-    for (int q = 0; q < 4; ++q) rhs[tet_nodes[4 * t + q]] -= x[q];
-  }
+  fluid_pressure_rhs({tet_nodes, volume, grad, u, p, xi, tau_p}, rhs, 0, tet_nodes.size() / 4);
 }
 
-void fluid_pressure_rhs_elements(const FluidPressureRhsArgs& a, const ElementOutput& out, size_t begin,
-                                 size_t end) {
+void fluid_pressure_rhs(const FluidPressureRhsArgs& a, std::span<double> rhs, size_t begin, size_t end) {
   for (size_t t = begin; t < end; ++t) {
-    double x[4] = {0.0, 0.0, 0.0, 0.0};
-    pressure_rhs_element(a, t, x);
-    for (int q = 0; q < 4; ++q) out.corner[out.corner_pos[4 * t + q]] = -x[q];
+    double x[4];
+    if (!pressure_rhs_element(a, t, x)) continue;
+    for (int q = 0; q < 4; ++q) rhs[a.tet_nodes[4 * t + q]] -= x[q];
   }
 }
 
@@ -328,25 +306,15 @@ void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> g
 void p1_weighted_gradient(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                           std::span<const double> grad, std::span<const double> p, std::span<const double> w,
                           std::span<double> out) {
-  const WeightedGradientArgs a{tet_nodes, volume, grad, p, w};
-  const size_t n_tets = tet_nodes.size() / 4;
-  for (size_t t = 0; t < n_tets; ++t) {
-    double f_gp[3];
-    weighted_gradient_element(a, t, f_gp);
-    for (int n = 0; n < 4; ++n)
-      for (int d = 0; d < 3; ++d) out[3 * static_cast<size_t>(tet_nodes[4 * t + n]) + d] += f_gp[d];
-  }
+  p1_weighted_gradient({tet_nodes, volume, grad, p, w}, out, 0, tet_nodes.size() / 4);
 }
 
-void p1_weighted_gradient_elements(const WeightedGradientArgs& a, const ElementOutput& out, size_t begin,
-                                   size_t end) {
+void p1_weighted_gradient(const WeightedGradientArgs& a, std::span<double> out, size_t begin, size_t end) {
   for (size_t t = begin; t < end; ++t) {
     double f_gp[3];
     weighted_gradient_element(a, t, f_gp);
-    for (int n = 0; n < 4; ++n) {
-      double* r = &out.corner[3 * static_cast<size_t>(out.corner_pos[4 * t + n])];
-      for (int d = 0; d < 3; ++d) r[d] = f_gp[d];
-    }
+    for (int n = 0; n < 4; ++n)
+      for (int d = 0; d < 3; ++d) out[3 * static_cast<size_t>(a.tet_nodes[4 * t + n]) + d] += f_gp[d];
   }
 }
 

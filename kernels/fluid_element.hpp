@@ -22,15 +22,6 @@
 
 namespace rift::kernels {
 
-// Where the element passes below write (parallel assembly, kernels/element_gather.hpp): entry e of tet t
-// (source 16 t + e) to matrix[entry_pos[16 t + e]], the values of its corner a (source 4 t + a) to
-// corner[c * corner_pos[4 t + a] + 0 .. c - 1], c the values per corner (3 or 1). Every position is
-// written by exactly one tet; tets with V <= 0 write zeros.
-struct ElementOutput {
-  std::span<const int32_t> entry_pos, corner_pos;
-  std::span<double> matrix, corner;
-};
-
 // Gradients g (12 doubles) of the four shape functions and the signed volume det[x1-x0, x2-x0, x3-x0]/6.
 // x holds the 12 corner coordinates. A tet with volume <= 0 gets g = 0.
 double p1_gradients(const double* x, double* g);
@@ -74,10 +65,9 @@ struct FluidMomentumArgs {
   std::span<double> rhs;  // 3 per node
 };
 void fluid_assemble_momentum(const FluidMomentumArgs& a);
-// The element pass of the same assembly, for tets [begin, end) (parallel; the gather then sums per
-// target): tet t's entry (node_i, node_j) as source 16 t + 4 i + j, its right-hand side of row node_i as
-// corner i (3 values). matrix_values, rhs and slot of a are not used.
-void fluid_momentum_elements(const FluidMomentumArgs& a, const ElementOutput& out, size_t begin, size_t end);
+// Tets [begin, end) only. Ranges whose tets share no node may run at the same time (colouring,
+// systems/fluid/fluid_assembly.hpp); each entry then receives its contributions in a fixed order.
+void fluid_assemble_momentum(const FluidMomentumArgs& a, size_t begin, size_t end);
 
 // Scalar P1 operator sum_t coef[t] K^t into a symmetric CSR matrix, with Dirichlet rows and columns
 // eliminated: rows of nodes with fixed[n] != 0 become identity (rhs = value[n]) and their columns move to
@@ -96,11 +86,10 @@ void scalar_laplacian_assemble(const ScalarLaplacianArgs& a);
 // The Dirichlet column elimination of scalar_laplacian_assemble for the right-hand side alone (the matrix
 // unchanged): rhs_i -= sum over tets of coef K_in value[n] for fixed n, free i; fixed rows get value[n].
 void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a);
-// The matrix of scalar_laplacian_assemble in two passes: the element pass for tets [begin, end) writes
-// the entries (zero where node_i or node_j is fixed) into out.matrix; after the gather into matrix_values,
-// scalar_laplacian_fix_rows writes the fixed rows' unit diagonal (uses fixed, diag_slot, matrix_values).
-void scalar_laplacian_elements(const ScalarLaplacianArgs& a, const ElementOutput& out, size_t begin,
-                               size_t end);
+// The matrix of scalar_laplacian_assemble in two steps: the entries of free rows and columns of tets
+// [begin, end) (accumulated; ranges as for fluid_assemble_momentum), then, once, the fixed rows' unit
+// diagonal (scalar_laplacian_fix_rows: uses fixed, diag_slot, matrix_values).
+void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end);
 void scalar_laplacian_fix_rows(const ScalarLaplacianArgs& a);
 
 // Right-hand side of the pressure-correction equation (docs/fluid.md):
@@ -110,14 +99,12 @@ void scalar_laplacian_fix_rows(const ScalarLaplacianArgs& a);
 void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                         std::span<const double> grad, std::span<const double> u, std::span<const double> p,
                         std::span<const double> xi, std::span<const double> tau_p, std::span<double> rhs);
-// Its element pass for tets [begin, end): corner q (1 value) gets tet t's term of row node_q, negated so
-// that the gathered sum is the right-hand side.
+// The same for tets [begin, end) (ranges as for fluid_assemble_momentum).
 struct FluidPressureRhsArgs {
   std::span<const int32_t> tet_nodes;
   std::span<const double> volume, grad, u, p, xi, tau_p;
 };
-void fluid_pressure_rhs_elements(const FluidPressureRhsArgs& a, const ElementOutput& out, size_t begin,
-                                 size_t end);
+void fluid_pressure_rhs(const FluidPressureRhsArgs& a, std::span<double> rhs, size_t begin, size_t end);
 
 // Cell divergence div u_t = sum_a g_a . u_a (1 per tet).
 void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> grad,
@@ -128,12 +115,11 @@ void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> g
 void p1_weighted_gradient(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                           std::span<const double> grad, std::span<const double> p, std::span<const double> w,
                           std::span<double> out);
-// Its element pass for tets [begin, end): each of the 4 corners (3 values) gets (V/4) w_t grad p_t.
+// The same for tets [begin, end) (ranges as for fluid_assemble_momentum).
 struct WeightedGradientArgs {
   std::span<const int32_t> tet_nodes;
   std::span<const double> volume, grad, p, w;
 };
-void p1_weighted_gradient_elements(const WeightedGradientArgs& a, const ElementOutput& out, size_t begin,
-                                   size_t end);
+void p1_weighted_gradient(const WeightedGradientArgs& a, std::span<double> out, size_t begin, size_t end);
 
 }  // namespace rift::kernels

@@ -118,7 +118,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   pressure_mat_ = momentum_;
   slot_ = p1_tet_slots(momentum_, tet_nodes_);
   diag_slot_ = diagonal_slots(momentum_);
-  assembly_ = FluidAssembly(tet_nodes_, slot_, momentum_, nn);
+  assembly_ = FluidAssembly(tet_nodes_, nn);
   bicgstab_.resize(static_cast<int32_t>(nn));
   for (auto& c : comp_) c = momentum_;
   for (int d = 0; d < 3; ++d) {

@@ -97,8 +97,7 @@ size_t p1_prepare(std::span<const double> x, std::span<const int32_t> tet_nodes,
 namespace {
 
 // One tet's momentum contributions: km[4 i + j] the matrix entry (node_i, node_j), kr[3 i + d] the
-// right-hand side of row node_i, component d. False (nothing written) for a tet with V <= 0. The one
-// definition both the sequential scatter and the parallel element pass use, so they agree bit for bit.
+// right-hand side of row node_i, component d. False (nothing written) for a tet with V <= 0.
 inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, double* kr) {
   const int32_t* nodes = &a.tet_nodes[4 * t];
   const double v = a.volume[t];
@@ -133,8 +132,7 @@ inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, d
     if (!a.source.empty()) cell_force[d] += a.source[3 * t + d];
     if (sigma != 0.0 && !a.target.empty()) cell_force[d] += sigma * a.target[3 * t + d];
   }
-  // Node values into locals first: the outputs may not be proven disjoint from the inputs, and the
-  // compiler would reload them inside the 4 x 4 loop.
+  // Node values gathered once: each is used by the 4 rows.
   double uo[12], bf[12];
   const bool with_body_force = !a.body_force.empty();
   for (int n = 0; n < 4; ++n)
@@ -143,24 +141,21 @@ inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, d
       uo[3 * n + d] = a.u_old[i];
       bf[3 * n + d] = with_body_force ? a.body_force[i] : 0.0;
     }
-  double kmat[16], krhs[12];
   for (int i = 0; i < 4; ++i) {
     double r[3] = {0.0, 0.0, 0.0};
     for (int j = 0; j < 4; ++j) {
       const double l = a.mu * k[4 * i + j] + a.rho * c[4 * i + j] + s[4 * i + j];
       double kij = rdt * m[4 * i + j] + a.theta * l;
       if (i == j) kij += sigma * 0.25 * v;
-      kmat[4 * i + j] = kij;
+      km[4 * i + j] = kij;
       const double rij = rdt * m[4 * i + j] - (1.0 - a.theta) * l;
       for (int d = 0; d < 3; ++d) {
         r[d] += rij * uo[3 * j + d];
         if (with_body_force) r[d] += m[4 * i + j] * bf[3 * j + d];
       }
     }
-    for (int d = 0; d < 3; ++d) krhs[3 * i + d] = r[d] + 0.25 * v * cell_force[d];
+    for (int d = 0; d < 3; ++d) kr[3 * i + d] = r[d] + 0.25 * v * cell_force[d];
   }
-  std::copy(kmat, kmat + 16, km);
-  std::copy(krhs, krhs + 12, kr);
   return true;
 }
 

@@ -2,6 +2,7 @@
 // (the finer resolution of issue 6, target max |du| <= 0.01 against Ghia), with the errors, steps and
 // time per step as counters; (2) the pressure solver alone: BoomerAMG-PCG on the 3-D P1 Poisson matrix
 // of n^3-cell structured meshes, set-up + solve to 1e-8, iterations as a counter (should stay flat).
+// (3) the default cavity step at 32^2 in arenas of 1 and 2 threads.
 // RIFT_BENCH_TINY=1: 8^2 cavity and 8^3 Poisson. RIFT_CAVITY_SIZES=24,48 replaces the cavity sizes.
 #include <benchmark/benchmark.h>
 
@@ -62,6 +63,18 @@ const int cavity_registered = [] {
   }
   return 0;
 }();
+
+// The default cavity step inside an arena of 1 or 2 threads (the fluid assembly's parallel loops;
+// docs/performance.md "Fluid kernels"): BM_FluidCavityRe100_Threads/n/threads, same counters.
+void cavity_threads(benchmark::State& state) {
+  rift::bench::arena(static_cast<int>(state.range(1))).execute([&] { cavity(state, {}); });
+}
+BENCHMARK(cavity_threads)
+    ->Name("BM_FluidCavityRe100_Threads")
+    ->Args({32, 1})
+    ->Args({32, 2})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 
 void BM_PressureAmgPcg(benchmark::State& state) {
   const int n = rift::bench::tiny() ? 8 : static_cast<int>(state.range(0));

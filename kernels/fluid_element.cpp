@@ -94,58 +94,85 @@ size_t p1_prepare(std::span<const double> x, std::span<const int32_t> tet_nodes,
   return bad;
 }
 
-void fluid_assemble_momentum(const FluidMomentumArgs& a) {
-  const size_t n_tets = a.tet_nodes.size() / 4;
+namespace {
+
+// One tet's momentum contributions: km[4 i + j] the matrix entry (node_i, node_j), kr[3 i + d] the
+// right-hand side of row node_i, component d. False (nothing written) for a tet with V <= 0.
+inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, double* kr) {
+  const int32_t* nodes = &a.tet_nodes[4 * t];
+  const double v = a.volume[t];
+  if (v <= 0.0) return false;
   const double rdt = a.rho / a.dt;
-  for (size_t t = 0; t < n_tets; ++t) {
-    const int32_t* nodes = &a.tet_nodes[4 * t];
-    const double v = a.volume[t];
-    if (v <= 0.0) continue;
-    const double* g = &a.grad[12 * t];
-    double w[12], wbar[3] = {0.0, 0.0, 0.0};
-    for (int n = 0; n < 4; ++n)
-      for (int d = 0; d < 3; ++d) {
-        w[3 * n + d] = a.advect[3 * static_cast<size_t>(nodes[n]) + d];
-        wbar[d] += 0.25 * w[3 * n + d];
-      }
-    double m[16], k[16], c[16], s[16];
-    p1_mass(v, m);
-    p1_stiffness(v, g, k);
-    p1_convection(v, g, w, c);
-    const double tau_s = a.supg_tau.empty() ? 0.0 : a.supg_tau[t];
-    if (tau_s > 0.0)
-      p1_streamline_diffusion(v, g, wbar, a.rho * tau_s, s);
-    else
-      std::fill(s, s + 16, 0.0);
-    const double sigma = a.sigma.empty() ? 0.0 : a.sigma[t];
-    // Pressure: constant cell gradient; -int N_a grad p = -(V/4) grad p.
-    double gp[3] = {0.0, 0.0, 0.0};
-    for (int n = 0; n < 4; ++n) {
-      const double pn = a.pressure[nodes[n]];
-      for (int d = 0; d < 3; ++d) gp[d] += g[3 * n + d] * pn;
-    }
-    double cell_force[3] = {0.0, 0.0, 0.0};
+  const double* g = &a.grad[12 * t];
+  double w[12], wbar[3] = {0.0, 0.0, 0.0};
+  for (int n = 0; n < 4; ++n)
     for (int d = 0; d < 3; ++d) {
-      cell_force[d] = -gp[d];
-      if (!a.source.empty()) cell_force[d] += a.source[3 * t + d];
-      if (sigma != 0.0 && !a.target.empty()) cell_force[d] += sigma * a.target[3 * t + d];
+      w[3 * n + d] = a.advect[3 * static_cast<size_t>(nodes[n]) + d];
+      wbar[d] += 0.25 * w[3 * n + d];
     }
-    for (int i = 0; i < 4; ++i) {
-      double r[3] = {0.0, 0.0, 0.0};
-      for (int j = 0; j < 4; ++j) {
-        const double l = a.mu * k[4 * i + j] + a.rho * c[4 * i + j] + s[4 * i + j];
-        double kij = rdt * m[4 * i + j] + a.theta * l;
-        if (i == j) kij += sigma * 0.25 * v;
-        a.matrix_values[a.slot[16 * t + 4 * i + j]] += kij;
-        const double rij = rdt * m[4 * i + j] - (1.0 - a.theta) * l;
-        const size_t nj = static_cast<size_t>(nodes[j]);
-        for (int d = 0; d < 3; ++d) {
-          r[d] += rij * a.u_old[3 * nj + d];
-          if (!a.body_force.empty()) r[d] += m[4 * i + j] * a.body_force[3 * nj + d];
-        }
+  double m[16], k[16], c[16], s[16];
+  p1_mass(v, m);
+  p1_stiffness(v, g, k);
+  p1_convection(v, g, w, c);
+  const double tau_s = a.supg_tau.empty() ? 0.0 : a.supg_tau[t];
+  if (tau_s > 0.0)
+    p1_streamline_diffusion(v, g, wbar, a.rho * tau_s, s);
+  else
+    std::fill(s, s + 16, 0.0);
+  const double sigma = a.sigma.empty() ? 0.0 : a.sigma[t];
+  // Pressure: constant cell gradient; -int N_a grad p = -(V/4) grad p.
+  double gp[3] = {0.0, 0.0, 0.0};
+  for (int n = 0; n < 4; ++n) {
+    const double pn = a.pressure[nodes[n]];
+    for (int d = 0; d < 3; ++d) gp[d] += g[3 * n + d] * pn;
+  }
+  double cell_force[3] = {0.0, 0.0, 0.0};
+  for (int d = 0; d < 3; ++d) {
+    cell_force[d] = -gp[d];
+    if (!a.source.empty()) cell_force[d] += a.source[3 * t + d];
+    if (sigma != 0.0 && !a.target.empty()) cell_force[d] += sigma * a.target[3 * t + d];
+  }
+  // Node values gathered once: each is used by the 4 rows.
+  double uo[12], bf[12];
+  const bool with_body_force = !a.body_force.empty();
+  for (int n = 0; n < 4; ++n)
+    for (int d = 0; d < 3; ++d) {
+      const size_t i = 3 * static_cast<size_t>(nodes[n]) + d;
+      uo[3 * n + d] = a.u_old[i];
+      bf[3 * n + d] = with_body_force ? a.body_force[i] : 0.0;
+    }
+  for (int i = 0; i < 4; ++i) {
+    double r[3] = {0.0, 0.0, 0.0};
+    for (int j = 0; j < 4; ++j) {
+      const double l = a.mu * k[4 * i + j] + a.rho * c[4 * i + j] + s[4 * i + j];
+      double kij = rdt * m[4 * i + j] + a.theta * l;
+      if (i == j) kij += sigma * 0.25 * v;
+      km[4 * i + j] = kij;
+      const double rij = rdt * m[4 * i + j] - (1.0 - a.theta) * l;
+      for (int d = 0; d < 3; ++d) {
+        r[d] += rij * uo[3 * j + d];
+        if (with_body_force) r[d] += m[4 * i + j] * bf[3 * j + d];
       }
-      const size_t ni = static_cast<size_t>(nodes[i]);
-      for (int d = 0; d < 3; ++d) a.rhs[3 * ni + d] += r[d] + 0.25 * v * cell_force[d];
+    }
+    for (int d = 0; d < 3; ++d) kr[3 * i + d] = r[d] + 0.25 * v * cell_force[d];
+  }
+  return true;
+}
+
+}  // namespace
+
+void fluid_assemble_momentum(const FluidMomentumArgs& a) {
+  fluid_assemble_momentum(a, 0, a.tet_nodes.size() / 4);
+}
+
+void fluid_assemble_momentum(const FluidMomentumArgs& a, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
+    double km[16], kr[12];
+    if (!momentum_element(a, t, km, kr)) continue;
+    for (int e = 0; e < 16; ++e) a.matrix_values[a.slot[16 * t + e]] += km[e];
+    for (int i = 0; i < 4; ++i) {
+      const size_t ni = static_cast<size_t>(a.tet_nodes[4 * t + i]);
+      for (int d = 0; d < 3; ++d) a.rhs[3 * ni + d] += kr[3 * i + d];
     }
   }
 }
@@ -190,27 +217,71 @@ void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
   laplacian_pass<false>(a);
 }
 
+void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
+    const int32_t* nodes = &a.tet_nodes[4 * t];
+    const double v = a.volume[t];
+    if (v <= 0.0) continue;
+    double k[16];
+    p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
+    for (int i = 0; i < 4; ++i) {
+      if (a.fixed[nodes[i]]) continue;
+      for (int j = 0; j < 4; ++j)
+        if (!a.fixed[nodes[j]]) a.matrix_values[a.slot[16 * t + 4 * i + j]] += k[4 * i + j];
+    }
+  }
+}
+
+void scalar_laplacian_fix_rows(const ScalarLaplacianArgs& a) {
+  for (size_t n = 0; n < a.fixed.size(); ++n)
+    if (a.fixed[n]) a.matrix_values[a.diag_slot[n]] = 1.0;
+}
+
+namespace {
+
+// One tet's terms of fluid_pressure_rhs: x[q] is what row node_q loses. False for V <= 0.
+inline bool pressure_rhs_element(const FluidPressureRhsArgs& a, size_t t, double* x) {
+  const int32_t* nodes = &a.tet_nodes[4 * t];
+  const double v = a.volume[t];
+  if (v <= 0.0) return false;
+  const double* g = &a.grad[12 * t];
+  double div = 0.0, r[3] = {0.0, 0.0, 0.0};
+  for (int n = 0; n < 4; ++n) {
+    const size_t nn = static_cast<size_t>(nodes[n]);
+    for (int d = 0; d < 3; ++d) {
+      div += g[3 * n + d] * a.u[3 * nn + d];
+      r[d] += g[3 * n + d] * a.p[nn] - (a.xi.empty() ? 0.0 : 0.25 * a.xi[3 * nn + d]);
+    }
+  }
+  const double tau = a.tau_p.empty() ? 0.0 : a.tau_p[t];
+  for (int q = 0; q < 4; ++q)
+    x[q] = 0.25 * v * div + tau * v * (g[3 * q] * r[0] + g[3 * q + 1] * r[1] + g[3 * q + 2] * r[2]);
+  return true;
+}
+
+// One tet's term of p1_weighted_gradient (the same for its 4 nodes): (V/4) w_t grad p_t.
+inline void weighted_gradient_element(const WeightedGradientArgs& a, size_t t, double* f_gp) {
+  const int32_t* nodes = &a.tet_nodes[4 * t];
+  double gp[3] = {0.0, 0.0, 0.0};
+  for (int n = 0; n < 4; ++n)
+    for (int d = 0; d < 3; ++d) gp[d] += a.grad[12 * t + 3 * n + d] * a.p[nodes[n]];
+  const double f = 0.25 * a.volume[t] * (a.w.empty() ? 1.0 : a.w[t]);
+  for (int d = 0; d < 3; ++d) f_gp[d] = f * gp[d];
+}
+
+}  // namespace
+
 void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                         std::span<const double> grad, std::span<const double> u, std::span<const double> p,
                         std::span<const double> xi, std::span<const double> tau_p, std::span<double> rhs) {
-  const size_t n_tets = tet_nodes.size() / 4;
-  for (size_t t = 0; t < n_tets; ++t) {
-    const int32_t* nodes = &tet_nodes[4 * t];
-    const double v = volume[t];
-    if (v <= 0.0) continue;
-    const double* g = &grad[12 * t];
-    double div = 0.0, r[3] = {0.0, 0.0, 0.0};
-    for (int n = 0; n < 4; ++n) {
-      const size_t nn = static_cast<size_t>(nodes[n]);
-      for (int d = 0; d < 3; ++d) {
-        div += g[3 * n + d] * u[3 * nn + d];
-        r[d] += g[3 * n + d] * p[nn] - (xi.empty() ? 0.0 : 0.25 * xi[3 * nn + d]);
-      }
-    }
-    const double tau = tau_p.empty() ? 0.0 : tau_p[t];
-    for (int q = 0; q < 4; ++q)
-      rhs[nodes[q]] -=
-          0.25 * v * div + tau * v * (g[3 * q] * r[0] + g[3 * q + 1] * r[1] + g[3 * q + 2] * r[2]);
+  fluid_pressure_rhs({tet_nodes, volume, grad, u, p, xi, tau_p}, rhs, 0, tet_nodes.size() / 4);
+}
+
+void fluid_pressure_rhs(const FluidPressureRhsArgs& a, std::span<double> rhs, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
+    double x[4];
+    if (!pressure_rhs_element(a, t, x)) continue;
+    for (int q = 0; q < 4; ++q) rhs[a.tet_nodes[4 * t + q]] -= x[q];
   }
 }
 
@@ -230,15 +301,15 @@ void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> g
 void p1_weighted_gradient(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                           std::span<const double> grad, std::span<const double> p, std::span<const double> w,
                           std::span<double> out) {
-  const size_t n_tets = tet_nodes.size() / 4;
-  for (size_t t = 0; t < n_tets; ++t) {
-    const int32_t* nodes = &tet_nodes[4 * t];
-    double gp[3] = {0.0, 0.0, 0.0};
+  p1_weighted_gradient({tet_nodes, volume, grad, p, w}, out, 0, tet_nodes.size() / 4);
+}
+
+void p1_weighted_gradient(const WeightedGradientArgs& a, std::span<double> out, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
+    double f_gp[3];
+    weighted_gradient_element(a, t, f_gp);
     for (int n = 0; n < 4; ++n)
-      for (int d = 0; d < 3; ++d) gp[d] += grad[12 * t + 3 * n + d] * p[nodes[n]];
-    const double f = 0.25 * volume[t] * (w.empty() ? 1.0 : w[t]);
-    for (int n = 0; n < 4; ++n)
-      for (int d = 0; d < 3; ++d) out[3 * static_cast<size_t>(nodes[n]) + d] += f * gp[d];
+      for (int d = 0; d < 3; ++d) out[3 * static_cast<size_t>(a.tet_nodes[4 * t + n]) + d] += f_gp[d];
   }
 }
 

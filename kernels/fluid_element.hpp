@@ -65,6 +65,9 @@ struct FluidMomentumArgs {
   std::span<double> rhs;  // 3 per node
 };
 void fluid_assemble_momentum(const FluidMomentumArgs& a);
+// Tets [begin, end) only. Ranges whose tets share no node may run at the same time (colouring,
+// systems/fluid/fluid_assembly.hpp); each entry then receives its contributions in a fixed order.
+void fluid_assemble_momentum(const FluidMomentumArgs& a, size_t begin, size_t end);
 
 // Scalar P1 operator sum_t coef[t] K^t into a symmetric CSR matrix, with Dirichlet rows and columns
 // eliminated: rows of nodes with fixed[n] != 0 become identity (rhs = value[n]) and their columns move to
@@ -83,6 +86,11 @@ void scalar_laplacian_assemble(const ScalarLaplacianArgs& a);
 // The Dirichlet column elimination of scalar_laplacian_assemble for the right-hand side alone (the matrix
 // unchanged): rhs_i -= sum over tets of coef K_in value[n] for fixed n, free i; fixed rows get value[n].
 void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a);
+// The matrix of scalar_laplacian_assemble in two steps: the entries of free rows and columns of tets
+// [begin, end) (accumulated; ranges as for fluid_assemble_momentum), then, once, the fixed rows' unit
+// diagonal (scalar_laplacian_fix_rows: uses fixed, diag_slot, matrix_values).
+void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end);
+void scalar_laplacian_fix_rows(const ScalarLaplacianArgs& a);
 
 // Right-hand side of the pressure-correction equation (docs/fluid.md):
 //   rhs_q = -sum_t [ (V/4) div u*_t  +  tau_p[t] V g_q . (grad p_t - xibar_t) ]
@@ -91,6 +99,12 @@ void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a);
 void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                         std::span<const double> grad, std::span<const double> u, std::span<const double> p,
                         std::span<const double> xi, std::span<const double> tau_p, std::span<double> rhs);
+// The same for tets [begin, end) (ranges as for fluid_assemble_momentum).
+struct FluidPressureRhsArgs {
+  std::span<const int32_t> tet_nodes;
+  std::span<const double> volume, grad, u, p, xi, tau_p;
+};
+void fluid_pressure_rhs(const FluidPressureRhsArgs& a, std::span<double> rhs, size_t begin, size_t end);
 
 // Cell divergence div u_t = sum_a g_a . u_a (1 per tet).
 void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> grad,
@@ -101,5 +115,11 @@ void p1_divergence(std::span<const int32_t> tet_nodes, std::span<const double> g
 void p1_weighted_gradient(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                           std::span<const double> grad, std::span<const double> p, std::span<const double> w,
                           std::span<double> out);
+// The same for tets [begin, end) (ranges as for fluid_assemble_momentum).
+struct WeightedGradientArgs {
+  std::span<const int32_t> tet_nodes;
+  std::span<const double> volume, grad, p, w;
+};
+void p1_weighted_gradient(const WeightedGradientArgs& a, std::span<double> out, size_t begin, size_t end);
 
 }  // namespace rift::kernels

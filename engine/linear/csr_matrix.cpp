@@ -12,7 +12,12 @@ int32_t CsrMatrix::find(int32_t i, int32_t j) const {
 }
 
 void CsrMatrix::multiply(std::span<const double> x, std::span<double> y) const {
-  for (int32_t i = 0; i < rows; ++i) {
+  multiply_rows(x, y, 0, static_cast<size_t>(rows));
+}
+
+void CsrMatrix::multiply_rows(std::span<const double> x, std::span<double> y, size_t begin,
+                              size_t end) const {
+  for (size_t i = begin; i < end; ++i) {
     double s = 0.0;
     for (int32_t k = row_ptr[i]; k < row_ptr[i + 1]; ++k) s += val[k] * x[col[k]];
     y[i] = s;

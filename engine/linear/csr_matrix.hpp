@@ -19,6 +19,8 @@ struct CsrMatrix {
   int32_t find(int32_t i, int32_t j) const;
   // y = A x.
   void multiply(std::span<const double> x, std::span<double> y) const;
+  // Rows [begin, end) of y = A x (rows are independent: blocks of rows may run in parallel).
+  void multiply_rows(std::span<const double> x, std::span<double> y, size_t begin, size_t end) const;
 };
 
 // Pattern of the P1 node graph of tets (4 node indices per tet), values zero.

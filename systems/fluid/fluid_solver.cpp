@@ -118,6 +118,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   pressure_mat_ = momentum_;
   slot_ = p1_tet_slots(momentum_, tet_nodes_);
   diag_slot_ = diagonal_slots(momentum_);
+  assembly_ = FluidAssembly(tet_nodes_, nn);
   bicgstab_.resize(static_cast<int32_t>(nn));
   for (auto& c : comp_) c = momentum_;
   for (int d = 0; d < 3; ++d) {
@@ -211,8 +212,7 @@ void FluidSolver::update_cell_coefficients() {
 }
 
 void FluidSolver::assemble_pressure_matrix() {
-  std::fill(pressure_mat_.val.begin(), pressure_mat_.val.end(), 0.0);
-  kernels::scalar_laplacian_assemble(
+  assembly_.laplacian_matrix(
       {tet_nodes_, volume_, grad_, pcoef_, slot_, diag_slot_, phi_fixed_, phi_value_, pressure_mat_.val, {}});
   pcoef_matrix_ = pcoef_;
   amg_->set_matrix(pressure_mat_);
@@ -256,8 +256,7 @@ int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> 
 }
 
 void FluidSolver::schur_velocity(std::span<const double> v, std::span<double> u_v, int& velocity_iterations) {
-  std::fill(grad_v_.begin(), grad_v_.end(), 0.0);
-  kernels::p1_weighted_gradient(tet_nodes_, volume_, grad_, v, {}, grad_v_);
+  assembly_.weighted_gradient({tet_nodes_, volume_, grad_, v, {}}, grad_v_);
   for (double& g : grad_v_) g = -g;
   velocity_iterations += solve_momentum(grad_v_, u_v, true);
 }
@@ -271,8 +270,7 @@ void FluidSolver::schur_apply(std::span<const double> v, std::span<double> sv, S
   // stabilisation tau_p (grad q, grad p - xi(p)) is implicit (grad_v_ holds int N grad v * -1 here).
   for (size_t n = 0; n < nn; ++n)
     for (int d = 0; d < 3; ++d) xi_v_[3 * n + d] = -grad_v_[3 * n + d] / node_volume_[n];
-  std::fill(sv.begin(), sv.end(), 0.0);
-  kernels::fluid_pressure_rhs(tet_nodes_, volume_, grad_, u_v_, v, xi_v_, tau_p_, sv);
+  assembly_.pressure_rhs({tet_nodes_, volume_, grad_, u_v_, v, xi_v_, tau_p_}, sv);
   for (size_t n = 0; n < nn; ++n) sv[n] = phi_fixed_[n] && !closed_ ? v[n] : -sv[n];
 }
 
@@ -406,8 +404,7 @@ FluidStepReport FluidSolver::step() {
     if (pressure_fixed_by_[n] >= 0) p_[n] = phi_value_[n];
   // Projected pressure gradient of p^n.
   const auto project_gradient = [&] {
-    std::fill(xi_.begin(), xi_.end(), 0.0);
-    kernels::p1_weighted_gradient(tet_nodes_, volume_, grad_, p_, {}, xi_);
+    assembly_.weighted_gradient({tet_nodes_, volume_, grad_, p_, {}}, xi_);
     for (size_t n = 0; n < nn; ++n)
       for (int d = 0; d < 3; ++d) xi_[3 * n + d] /= node_volume_[n];
   };
@@ -431,8 +428,6 @@ FluidStepReport FluidSolver::step() {
       }
     }
     // 1. Momentum.
-    std::fill(momentum_.val.begin(), momentum_.val.end(), 0.0);
-    std::fill(rhs_.begin(), rhs_.end(), 0.0);
     kernels::FluidMomentumArgs ma;
     ma.rho = s.rho;
     ma.mu = s.mu;
@@ -452,12 +447,11 @@ FluidStepReport FluidSolver::step() {
     if (body_force_fn_) ma.body_force = body_force_;
     ma.matrix_values = momentum_.val;
     ma.rhs = rhs_;
-    kernels::fluid_assemble_momentum(ma);
+    assembly_.momentum(ma);
     build_component_matrices();
     rep.velocity_iterations += solve_momentum(rhs_, u_star_, false, s.velocity_forcing);
     // 2. Pressure: residual -R(u*, p^k) of the stabilised continuity equation.
-    std::fill(cont_res_.begin(), cont_res_.end(), 0.0);
-    kernels::fluid_pressure_rhs(tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_, cont_res_);
+    assembly_.pressure_rhs({tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_}, cont_res_);
     if (s.coupling == PressureCoupling::schur_gmres) {
       double sum = 0.0;
       for (size_t n = 0; n < nn; ++n) {
@@ -504,8 +498,7 @@ FluidStepReport FluidSolver::step() {
           amg_->solve(prhs_, phi_, std::max(s.pressure_solver.rel_tol, s.projection_forcing));
       rep.pressure_iterations += pr.iterations;
       // 3. Corrections: u = u* - c grad phi (lumped), p += phi - chi R / diag(S_steady).
-      std::fill(corr_.begin(), corr_.end(), 0.0);
-      kernels::p1_weighted_gradient(tet_nodes_, volume_, grad_, phi_, c_cell_, corr_);
+      assembly_.weighted_gradient({tet_nodes_, volume_, grad_, phi_, c_cell_}, corr_);
       for (size_t n = 0; n < nn; ++n) {
         for (int d = 0; d < 3; ++d) {
           const size_t i = 3 * n + d;

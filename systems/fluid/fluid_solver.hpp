@@ -26,6 +26,7 @@
 #include "engine/linear/hypre_pcg.hpp"
 #include "engine/linear/krylov.hpp"
 #include "engine/mesh/tet_mesh.hpp"
+#include "systems/fluid/fluid_assembly.hpp"
 
 namespace rift::fluid {
 
@@ -188,6 +189,7 @@ class FluidSolver {
   std::array<bool, 3> comp_all_fixed_{};  // every node's component fixed (e.g. w in a free-slip slab)
   std::vector<double> krylov_v_, krylov_z_, hess_, g_, cs_, sn_, y_, u_v_, xi_v_, grad_v_, prec_rhs_;
   std::vector<int32_t> slot_, diag_slot_;
+  FluidAssembly assembly_;  // the parallel element loops (momentum, pressure matrix, rhs, gradients)
   std::vector<double> rhs_, rhs_c_, x_c_, prhs_, cont_res_, phi_, corr_;
   BicgstabJacobi bicgstab_;
   std::unique_ptr<HypreAmgPcg> amg_;

@@ -11,7 +11,9 @@ namespace rift::kernels {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kTolFactor = 16.0 * kEps;  // tol = 16 eps |n| D (header: the error of s is a few eps |n| D)
+// tol = 16 eps |n|_1 D_1 (header: the error of s is a few eps |n| D). L1 norms, between 1 and 3 times the
+// Euclidean product, so that no square root is taken per pair.
+constexpr double kTolFactor = 16.0 * kEps;
 
 // A clip adds one vertex per edge from a kept to a removed vertex: at most 3 min(kept, removed) <= 1.5 V new
 // ones, and kept + new <= 2 V remain. From 4 vertices, 4 clips leave <= 8, 16, 32, 64, and the 4th clip
@@ -26,6 +28,11 @@ constexpr int kFace[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
 // Neighbours of each corner of a positively oriented tet, counter-clockwise seen from outside.
 constexpr int kTetNeighbours[4][3] = {{1, 3, 2}, {2, 3, 0}, {0, 3, 1}, {1, 2, 0}};
 
+// The slot of w in v's neighbour list (w must be there); branch-free, as the walks below do this per step.
+inline int slot_of(const int nbr[3], int w) {
+  return nbr[0] == w ? 0 : (nbr[1] == w ? 1 : 2);
+}
+
 struct Polyhedron {
   double x[kMaxVertices][3];
   int nbr[kMaxVertices][3];
@@ -38,8 +45,8 @@ double det3(const double a[3], const double b[3], const double c[3]) {
   return dot(a, bc);
 }
 
-double norm3(const double a[3]) {
-  return std::sqrt(dot(a, a));
+double norm1(const double a[3]) {
+  return std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]);
 }
 
 // Inner normals (for either orientation: `sign` = sign of det) and offsets of a tet's 4 faces.
@@ -54,7 +61,7 @@ void face_planes(const double c[4][3], double sign, double normal[4][3], double 
     cross(e1, e2, normal[k]);
     for (int d = 0; d < 3; ++d) normal[k][d] *= sign;
     offset[k] = dot(normal[k], p);
-    norm[k] = norm3(normal[k]);
+    norm[k] = norm1(normal[k]);
   }
 }
 
@@ -118,8 +125,7 @@ bool clip(Polyhedron& P, const double n[3], double offset, double tol) {
   for (int start = old; start < P.n; ++start) {
     int cur = start, next = P.nbr[start][0];
     do {
-      int np = 0;
-      while (P.nbr[next][np] != cur) ++np;
+      const int np = slot_of(P.nbr[next], cur);
       cur = next;
       next = P.nbr[cur][(np + 1) % 3];
     } while (cur < old);
@@ -159,9 +165,8 @@ double polyhedron_volume(const Polyhedron& P) {
       used[v][e] = true;
       int a = v, b = P.nbr[v][e];
       auto step = [&] {
-        int np = 0;
-        while (P.nbr[b][np] != a) ++np;
-        const int out = (np + 1) % 3;
+        const int np = slot_of(P.nbr[b], a);
+        const int out = np == 2 ? 0 : np + 1;
         used[b][out] = true;
         a = b;
         b = P.nbr[b][out];
@@ -204,15 +209,15 @@ double clipped_tet_volume(const double a[4][3], const TetHalfSpaces& b) {
   double p[4][3], lo[3], hi[3];
   for (int k = 0; k < 4; ++k)
     for (int d = 0; d < 3; ++d) p[k][d] = a[k][d] - b.origin[d];
-  double diag2 = 0.0;
+  double diag = 0.0;  // D_1: the L1 length of the pair box's diagonal
   for (int d = 0; d < 3; ++d) {
     lo[d] = std::min({p[0][d], p[1][d], p[2][d], p[3][d]});
     hi[d] = std::max({p[0][d], p[1][d], p[2][d], p[3][d]});
     if (hi[d] <= b.lo[d] || b.hi[d] <= lo[d]) return 0.0;  // boxes at most touching
     const double span = std::max(hi[d], b.hi[d]) - std::min(lo[d], b.lo[d]);
-    diag2 += span * span;
+    diag += span;
   }
-  const double D = std::sqrt(diag2);
+  const double D = diag;
   double e[3][3];
   for (int k = 0; k < 3; ++k)
     for (int d = 0; d < 3; ++d) e[k][d] = p[k + 1][d] - p[0][d];

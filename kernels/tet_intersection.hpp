@@ -19,10 +19,11 @@
 // V_A bit for bit). Flat tets (det = 0) give 0. Either orientation of either tet is accepted.
 //
 // Precision. All coordinates are taken relative to B's vertex 0, so the result does not depend on where the
-// pair sits in space. tol = 16 eps |n| D for a plane with (unnormalised) normal n, D = the diagonal of the
-// pair's bounding box: the computed s = n . (x - q) carries an error of a few eps |n| D (one cross product,
-// one difference, one dot), so tol only catches values that round-off could not separate from 0, and
-// moving those vertices onto the plane changes the volume by at most tol / |n| x area = O(eps D^3).
+// pair sits in space. tol = 16 eps |n|_1 D_1 for a plane with (unnormalised) normal n, D_1 = the L1 length
+// of the diagonal of the pair's bounding box (L1 norms: 1-3 x the Euclidean product, no square roots): the
+// computed s = n . (x - q) carries an error of a few eps |n| D (one cross product, one difference, one dot),
+// so tol only catches values that round-off could not separate from 0, and moving those vertices onto the
+// plane changes the volume by at most tol / |n| x area = O(eps D^3).
 // Otherwise the result is the exact volume up to round-off: an absolute error of O(10^2 eps D^3) (at most
 // ~30 fan tets of size <= D, plus vertices placed to eps D). The result is clamped to [0, min(V_A, V_B)]
 // (which only acts on round-off). Tests: tests/unit/test_volume_fraction.cpp.
@@ -41,7 +42,7 @@ struct TetHalfSpaces {
   double corner[4][3];  // corners relative to origin (corner[0] = 0)
   double normal[4][3];  // inner normal of the face opposite corner k, |n| = twice the face area
   double offset[4];     // n_k . (a corner of face k), relative to origin
-  double norm[4];       // |n_k|
+  double norm[4];       // |n_k|_1 (L1 norm, for the snapping tolerance)
   double lo[3], hi[3];  // bounding box, relative to origin
   double volume;        // |det| / 6 >= 0; 0 for a flat tet
 };

@@ -3,7 +3,8 @@
 // invariance under corner order, orientation and the exchange of the two tets, robustness on tets whose
 // corners sit on a coarse grid (coincident vertices, coplanar faces), conservation of the solid volume on
 // a rotated fluid mesh of another resolution, exact fractions of an axis-aligned block on a lattice, the
-// broad phase against its O(n_f n_s) reference, and bitwise identical fractions on 1 and 2 threads.
+// broad phase against its O(n_f n_s) reference, bitwise identical fractions on 1 and 2 threads, and no heap
+// allocation in the kernel (nor in the broad phase once its workspace has grown).
 //
 // Round-off bound used below: tet_intersection.hpp states an absolute error of O(10^2 eps D^3) for a pair
 // whose bounding box has diagonal D (~30 fan tets of size <= D, vertices placed to eps D); kBound =
@@ -28,6 +29,7 @@
 #include "kernels/tet_intersection.hpp"
 #include "kernels/vec3_ops.hpp"
 #include "kernels/volume_fraction.hpp"
+#include "tests/unit/test_allocation_counter.hpp"
 
 namespace rift::kernels {
 namespace {
@@ -525,6 +527,26 @@ TEST(CouplingBroadPhase, MatchesTheReferenceOnRandomBoxesWithABuffer) {
   // No solid, no fluid: no pairs.
   coupling_broad_phase({fluid.lo, fluid.hi, {}, {}, 0.0}, ws);
   EXPECT_TRUE(ws.pairs.empty());
+}
+
+// The kernel allocates nothing (fixed-size stack buffers), and the broad phase nothing once its workspace
+// has grown to the problem (heap allocations counted through operator new).
+TEST(VolumeFraction, AllocatesNothing) {
+  Mesh fluid = flatten(generate_lattice_box({6, 6, 6}, {1.0, 1.0, 1.0}));
+  const double axis[3] = {0.2, 0.1, 1.0}, centre[3] = {0.5, 0.5, 0.5};
+  rotate(fluid, axis, 0.7, centre);
+  const Mesh solid = flatten(structured_box({{0.3, 0.3, 0.3}, {0.7, 0.7, 0.7}, {5, 5, 5}}));
+  const Boxes fb = boxes_of(fluid), sb = boxes_of(solid);
+  const CouplingBroadPhaseArgs bp{fb.lo, fb.hi, sb.lo, sb.hi, 0.01};
+  CouplingBroadPhaseWorkspace ws;
+  coupling_broad_phase(bp, ws);
+  std::vector<double> volume(fluid.num_tets()), fraction(fluid.num_tets());
+  const VolumeFractionArgs args{fluid.x, fluid.tets, solid.x, solid.tets, ws.pairs, volume, fraction};
+  const long before = allocations.load();
+  coupling_broad_phase(bp, ws);
+  const VolumeFractionStatus status = volume_fraction(args, 0, fluid.num_tets());
+  EXPECT_EQ(allocations.load(), before);
+  EXPECT_GT(status.intersecting, 100u);
 }
 
 }  // namespace

@@ -177,12 +177,15 @@ void fluid_assemble_momentum(const FluidMomentumArgs& a, size_t begin, size_t en
   }
 }
 
-namespace {
+void scalar_laplacian_assemble(const ScalarLaplacianArgs& a) {
+  scalar_laplacian_matrix(a, 0, a.tet_nodes.size() / 4);
+  scalar_laplacian_fix_rows(a);
+  if (!a.rhs.empty()) scalar_laplacian_dirichlet_rhs(a);
+}
 
-template <bool kMatrix>
-void laplacian_pass(const ScalarLaplacianArgs& a) {
+// Each free row loses k_ij value_j for its fixed columns j; fixed rows hold their value.
+void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
   const size_t n_tets = a.tet_nodes.size() / 4;
-  const bool with_rhs = !a.rhs.empty();
   for (size_t t = 0; t < n_tets; ++t) {
     const int32_t* nodes = &a.tet_nodes[4 * t];
     const double v = a.volume[t];
@@ -191,30 +194,12 @@ void laplacian_pass(const ScalarLaplacianArgs& a) {
     p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
     for (int i = 0; i < 4; ++i) {
       if (a.fixed[nodes[i]]) continue;
-      for (int j = 0; j < 4; ++j) {
-        if (a.fixed[nodes[j]]) {
-          if (with_rhs) a.rhs[nodes[i]] -= k[4 * i + j] * a.value[nodes[j]];
-        } else if constexpr (kMatrix) {
-          a.matrix_values[a.slot[16 * t + 4 * i + j]] += k[4 * i + j];
-        }
-      }
+      for (int j = 0; j < 4; ++j)
+        if (a.fixed[nodes[j]]) a.rhs[nodes[i]] -= k[4 * i + j] * a.value[nodes[j]];
     }
   }
-  const size_t n_nodes = a.fixed.size();
-  for (size_t n = 0; n < n_nodes; ++n)
-    if (a.fixed[n]) {
-      if constexpr (kMatrix) a.matrix_values[a.diag_slot[n]] = 1.0;
-      if (with_rhs) a.rhs[n] = a.value[n];
-    }
-}
-
-}  // namespace
-
-void scalar_laplacian_assemble(const ScalarLaplacianArgs& a) {
-  laplacian_pass<true>(a);
-}
-void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
-  laplacian_pass<false>(a);
+  for (size_t n = 0; n < a.fixed.size(); ++n)
+    if (a.fixed[n]) a.rhs[n] = a.value[n];
 }
 
 void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end) {

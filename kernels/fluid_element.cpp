@@ -177,32 +177,11 @@ void fluid_assemble_momentum(const FluidMomentumArgs& a, size_t begin, size_t en
   }
 }
 
-void scalar_laplacian_assemble(const ScalarLaplacianArgs& a) {
-  scalar_laplacian_matrix(a, 0, a.tet_nodes.size() / 4);
-  scalar_laplacian_fix_rows(a);
-  if (!a.rhs.empty()) scalar_laplacian_dirichlet_rhs(a);
-}
+namespace {
 
-// Each free row loses k_ij value_j for its fixed columns j; fixed rows hold their value.
-void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
-  const size_t n_tets = a.tet_nodes.size() / 4;
-  for (size_t t = 0; t < n_tets; ++t) {
-    const int32_t* nodes = &a.tet_nodes[4 * t];
-    const double v = a.volume[t];
-    if (v <= 0.0) continue;
-    double k[16];
-    p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
-    for (int i = 0; i < 4; ++i) {
-      if (a.fixed[nodes[i]]) continue;
-      for (int j = 0; j < 4; ++j)
-        if (a.fixed[nodes[j]]) a.rhs[nodes[i]] -= k[4 * i + j] * a.value[nodes[j]];
-    }
-  }
-  for (size_t n = 0; n < a.fixed.size(); ++n)
-    if (a.fixed[n]) a.rhs[n] = a.value[n];
-}
-
-void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end) {
+// body(t, i, j, k_ij) for every free row i of every tet t in [begin, end) with V > 0, j over all 4 corners.
+template <class Body>
+void for_each_free_row_entry(const ScalarLaplacianArgs& a, size_t begin, size_t end, const Body& body) {
   for (size_t t = begin; t < end; ++t) {
     const int32_t* nodes = &a.tet_nodes[4 * t];
     const double v = a.volume[t];
@@ -211,10 +190,33 @@ void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t 
     p1_stiffness(v * a.coef[t], &a.grad[12 * t], k);
     for (int i = 0; i < 4; ++i) {
       if (a.fixed[nodes[i]]) continue;
-      for (int j = 0; j < 4; ++j)
-        if (!a.fixed[nodes[j]]) a.matrix_values[a.slot[16 * t + 4 * i + j]] += k[4 * i + j];
+      for (int j = 0; j < 4; ++j) body(t, i, j, k[4 * i + j]);
     }
   }
+}
+
+}  // namespace
+
+void scalar_laplacian_assemble(const ScalarLaplacianArgs& a) {
+  scalar_laplacian_matrix(a, 0, a.tet_nodes.size() / 4);
+  scalar_laplacian_fix_rows(a);
+  if (!a.rhs.empty()) scalar_laplacian_dirichlet_rhs(a);
+}
+
+// Each free row loses k_ij value_j for its fixed columns j; fixed rows hold their value.
+void scalar_laplacian_dirichlet_rhs(const ScalarLaplacianArgs& a) {
+  for_each_free_row_entry(a, 0, a.tet_nodes.size() / 4, [&](size_t t, int i, int j, double k) {
+    const int32_t nj = a.tet_nodes[4 * t + j];
+    if (a.fixed[nj]) a.rhs[a.tet_nodes[4 * t + i]] -= k * a.value[nj];
+  });
+  for (size_t n = 0; n < a.fixed.size(); ++n)
+    if (a.fixed[n]) a.rhs[n] = a.value[n];
+}
+
+void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t end) {
+  for_each_free_row_entry(a, begin, end, [&](size_t t, int i, int j, double k) {
+    if (!a.fixed[a.tet_nodes[4 * t + j]]) a.matrix_values[a.slot[16 * t + 4 * i + j]] += k;
+  });
 }
 
 void scalar_laplacian_fix_rows(const ScalarLaplacianArgs& a) {

@@ -12,8 +12,12 @@ SurfaceLoadSystem::SurfaceLoadSystem(Store& store, std::vector<SolidBoundarySpec
       initial_stress_(initial_stress),
       values_(specs_.size()),
       crack_face_begin_(crack_face_begin),
-      has_crack_faces_(crack_face_begin < store.table(solid::face_table).size()) {
-  if (has_crack_faces_) broken_joints_.reserve(store_.table(solid::joint_table).size());
+      has_crack_faces_(crack_face_begin < store.table(solid::face_table).size()) {}
+
+// The fracture log lists every broken joint once (initial cracks first), so it is the list of pressed
+// joints; being part of the checkpoint, it needs no copy here.
+size_t SurfaceLoadSystem::pressed_crack_faces() const {
+  return has_crack_faces_ ? 2 * store_.table(solid::event_table).size() : 0;
 }
 
 Access SurfaceLoadSystem::access() const {
@@ -24,11 +28,6 @@ Access SurfaceLoadSystem::access() const {
   // step n is pressed from step n + 1 on, on any thread count.
   if (has_crack_faces_) reads.push_back(col(solid::event_table, "joint"));
   return {reads, {col(F, "corner_force")}};
-}
-
-void SurfaceLoadSystem::follow_fracture_log() {
-  const auto joint = store_.table(solid::event_table).span<const int32_t>("joint");
-  for (; events_seen_ < joint.size(); ++events_seen_) broken_joints_.push_back(joint[events_seen_]);
 }
 
 void SurfaceLoadSystem::run(const StepContext& ctx) {
@@ -54,11 +53,11 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
     kernels::surface_loads(x, nodes, load, values_, force, begin, end);
   });
   if (!has_crack_faces_) return;
-  follow_fracture_log();
   // Each broken joint's two faces are adjacent rows; every row is written by one joint only.
-  parallel_for(broken_joints_.size(), 1024, [&](size_t begin, size_t end) {
+  const auto broken = store_.table(solid::event_table).span<const int32_t>("joint");
+  parallel_for(broken.size(), 1024, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      const size_t f = crack_face_begin_ + 2 * static_cast<size_t>(broken_joints_[k]);
+      const size_t f = crack_face_begin_ + 2 * static_cast<size_t>(broken[k]);
       kernels::surface_loads(x, nodes, load, values_, force, f, f + 2);
     }
   });

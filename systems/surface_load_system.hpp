@@ -23,21 +23,15 @@ class SurfaceLoadSystem : public System {
   std::string name() const override { return "surface_loads"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
-  size_t pressed_crack_faces() const { return 2 * broken_joints_.size(); }
+  size_t pressed_crack_faces() const;
 
  private:
-  void follow_fracture_log();
-
   Store& store_;
   std::vector<SolidBoundarySpec> specs_;
   std::array<double, 6> initial_stress_;
   std::vector<kernels::FaceLoad> values_;  // evaluated each step, sized once
   size_t crack_face_begin_;
   bool has_crack_faces_;
-  // Broken joints, in the order of the fracture log. Rebuilt from the log after a restart (the log is
-  // part of the checkpoint), so it needs no state of its own.
-  std::vector<int32_t> broken_joints_;
-  size_t events_seen_ = 0;
 };
 
 }  // namespace rift

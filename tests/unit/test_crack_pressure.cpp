@@ -2,7 +2,6 @@
 // on every node, for relaxation to rest): who is pressed and when, the energy books, restart and
 // threads. The Sneddon opening itself is checked in tests/validation/test_sneddon.cpp.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -13,7 +12,9 @@
 #include "engine/simulation.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
+#include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
+#include "tests/validation/validation_support.hpp"
 
 using namespace rift;
 namespace fs = std::filesystem;
@@ -38,17 +39,7 @@ std::unique_ptr<Simulation> start(const Scene& scene, int threads = 1) {
   return std::make_unique<Simulation>(scene, o);
 }
 
-SolidModel& solid_model(Simulation& sim) {
-  for (auto& m : sim.world().models)
-    if (auto* s = dynamic_cast<SolidModel*>(m.get())) return *s;
-  throw std::runtime_error("no solid");
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rift_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
+using validation::solid_of;
 
 // Sum of |corner force| over the crack faces of intact and of broken joints.
 std::pair<double, double> crack_face_forces(Simulation& sim, size_t first_crack_face) {
@@ -82,11 +73,11 @@ TEST(CrackPressure, PressesTheFacesOfBrokenJointsOnlyAndOpensTheCrack) {
   // least p A (all along y here, to the rotation of the face).
   EXPECT_NEAR(pressed, 2.0 * 1.0e6 * total_area, 1e-3 * pressed);
   nlohmann::json summary;
-  solid_model(*sim).summarize(summary);
+  solid_of(*sim).summarize(summary);
   EXPECT_EQ(summary["solid"]["crack_faces_pressed"], 16);
   // The crack opens: the volume between its faces grows, and the pressure's work is external work.
   std::vector<std::pair<std::string, double>> row;
-  solid_model(*sim).metrics(sim->time(), row);
+  solid_of(*sim).metrics(sim->time(), row);
   double volume = -1.0, pressure = -1.0;
   for (const auto& [k, v] : row) {
     if (k == "solid_crack_volume") volume = v;
@@ -94,7 +85,7 @@ TEST(CrackPressure, PressesTheFacesOfBrokenJointsOnlyAndOpensTheCrack) {
   }
   EXPECT_GT(volume, 0.0);
   EXPECT_EQ(pressure, 1.0e6);
-  const SolidEnergies e = solid_model(*sim).energies();
+  const SolidEnergies e = solid_of(*sim).energies();
   EXPECT_GT(e.external_work, 0.0);
   // 5 %, the bound of the stability tests: the pressure is a step at t = 0, whose first steps the
   // central difference books to O(dt) (3 % after 50 steps here; the full Sneddon run ends at 1e-8).
@@ -124,7 +115,7 @@ TEST(CrackPressure, AJointThatBreaksIsPressedFromTheNextStep) {
   ASSERT_GT(broken, 8u) << "the crack did not grow";
   sim->step_once();
   nlohmann::json summary;
-  solid_model(*sim).summarize(summary);
+  solid_of(*sim).summarize(summary);
   EXPECT_EQ(summary["solid"]["crack_faces_pressed"].get<size_t>(),
             2 * sim->world().store.table(solid::event_table).size());
 }
@@ -132,7 +123,8 @@ TEST(CrackPressure, AJointThatBreaksIsPressedFromTheNextStep) {
 TEST(CrackPressure, RestartAndThreadsGiveTheSameBits) {
   const Scene scene = small_sneddon(
       {"solid.materials[0].fracture.tensile_strength=2.0e6", "solid.materials[0].fracture.cohesion=4.0e6"});
-  const fs::path a = fresh_dir("crack_straight"), b = fresh_dir("crack_restarted"), c = fresh_dir("crack_2t");
+  const test::TempDir dir;
+  const fs::path a = dir.path() / "straight", b = dir.path() / "restarted", c = dir.path() / "two_threads";
   const RunResult straight = test::run_scene(scene, a, 1);
   ASSERT_TRUE(straight.completed);
   test::run_scene(scene, b, 1, straight.steps / 2);
@@ -140,7 +132,6 @@ TEST(CrackPressure, RestartAndThreadsGiveTheSameBits) {
   EXPECT_EQ(hex64(restarted.state_hash), hex64(straight.state_hash));
   const RunResult two = test::run_scene(scene, c, 2);
   EXPECT_EQ(hex64(two.state_hash), hex64(straight.state_hash));
-  for (const auto& d : {a, b, c}) fs::remove_all(d);
 }
 
 TEST(MassDamping, RigidMotionDecaysAsTheDampedLeapfrogAndTheEnergyIsBooked) {
@@ -162,7 +153,7 @@ TEST(MassDamping, RigidMotionDecaysAsTheDampedLeapfrogAndTheEnergyIsBooked) {
     if (v[i] > 0) worst = std::max(worst, std::abs(v[i] / expected_right - 1.0));
   EXPECT_LT(worst, 1e-9);  // round-off of the rigid motion's strain only
   EXPECT_NEAR(std::pow(keep, steps), std::exp(-c * sim->time()), 1e-3);  // the drag's exact decay, to O(dt^2)
-  const SolidEnergies e = solid_model(*sim).energies();
+  const SolidEnergies e = solid_of(*sim).energies();
   EXPECT_GT(e.damping, 0.0);
   // The initial kinetic energy counts as external work: it is now kinetic energy or dissipated.
   EXPECT_LT(std::abs(e.balance_error()), 1e-9 * e.external_work);

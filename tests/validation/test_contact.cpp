@@ -1,13 +1,13 @@
 // Contact validation (issue 4): the scenes scenes/validation/contact_*.yaml run through the Simulation the
 // CLI uses. Each tolerance is stated with the reason it is fair.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <set>
 
 #include "engine/core/state_hash.hpp"
 #include "systems/solid_tables.hpp"
+#include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 #include "tests/validation/validation_support.hpp"
 
@@ -264,18 +264,15 @@ TEST(ContactValidation, AStepAboveTheContactLimitStopsWithADiagnosis) {
     contact_dt = solid_of(probe).stable_dt();
   }
   scene.time.dt = 2.0 * contact_dt;
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("rift_contact_unstable_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const test::TempDir dir;
   try {
-    test::run_scene(scene, dir, 1);
+    test::run_scene(scene, dir.path(), 1);
     ADD_FAILURE() << "the run finished";
   } catch (const std::exception& e) {
     const std::string why = e.what();
     EXPECT_NE(why.find("contact is putting energy"), std::string::npos) << why;
     EXPECT_NE(why.find("solid.contact.penalty"), std::string::npos) << why;
   }
-  fs::remove_all(dir);
 }
 
 // Restart with active contacts: the pair list, the friction histories, the detection positions and the
@@ -283,18 +280,13 @@ TEST(ContactValidation, AStepAboveTheContactLimitStopsWithADiagnosis) {
 // fracture log. Stopped mid-slide, restarted: bitwise the same end state as a straight run.
 TEST(ContactValidation, RestartMidSlideIsBitwiseIdentical) {
   const Scene scene = validation_scene("contact_incline.yaml", {"time.end=0.02", "output.interval=0.005"});
-  namespace fs = std::filesystem;
-  const fs::path a = fs::temp_directory_path() / ("rift_contact_straight_" + std::to_string(::getpid())),
-                 b = fs::temp_directory_path() / ("rift_contact_restarted_" + std::to_string(::getpid()));
-  fs::remove_all(a);
-  fs::remove_all(b);
+  const test::TempDir dir;
+  const auto a = dir.path() / "straight", b = dir.path() / "restarted";
   const RunResult straight = test::run_scene(scene, a, 2);
   ASSERT_TRUE(straight.completed);
   test::run_scene(scene, b, 1, straight.steps / 2);
   const RunResult second = test::run_scene(scene, b, 2, std::nullopt, true);
   EXPECT_EQ(hex64(second.state_hash), hex64(straight.state_hash));
-  fs::remove_all(a);
-  fs::remove_all(b);
 }
 
 }  // namespace

@@ -62,35 +62,30 @@ CrackResult run_sneddon(int cells_per_a, int threads) {
       {"mesh.generate.cells=[" + std::to_string(10 * n) + ", " + std::to_string(20 * n) + ", 1]",
        "solid.fracture.box_min=[-1, -" + band + ", -1]", "solid.fracture.box_max=[1.25, " + band + ", 1]"});
   CrackResult r;
-  RunOptions o;
-  o.threads = threads;
-  o.progress = false;
-  o.write_output = false;
-  Simulation sim(scene, o);
-  Metrics m(solid_of(sim));
-  const int64_t three_quarters = 3 * sim.total_steps() / 4;
-  while (sim.step() < sim.total_steps()) {
-    sim.step_once();
-    if (sim.step() == three_quarters) {
-      m.update(sim.time());
+  run_watching(scene, threads, [&](Simulation& sim) {
+    const int64_t step = sim.step(), total = sim.total_steps();
+    if (step != 3 * total / 4 && step != total) return;
+    Metrics m(solid_of(sim));
+    m.update(sim.time());
+    if (step == 3 * total / 4) {
       r.volume_at_three_quarters = 2.0 * m["solid_crack_volume"] / kThickness;
+      return;
     }
-  }
-  r.opening = crack_opening(sim);
-  r.w0 = r.opening.begin()->second;
-  double prev_x = 0.0, prev_w = r.w0;
-  for (const auto& [key, w] : r.opening) {
-    const double xk = static_cast<double>(key) * 1e-9;
-    r.volume += (xk - prev_x) * (w + prev_w);  // 2 x trapezoid
-    prev_x = xk, prev_w = w;
-  }
-  r.volume += (kA - prev_x) * prev_w;  // to the tip, where the opening is zero
-  m.update(sim.time());
-  r.metric_volume = 2.0 * m["solid_crack_volume"] / kThickness;
-  r.external_work = m["solid_external_work"];
-  r.elastic = m["solid_elastic_energy"];
-  r.joint = m["solid_joint_energy"];
-  r.balance = m["solid_energy_balance_error"];
+    r.opening = crack_opening(sim);
+    r.w0 = r.opening.begin()->second;
+    double prev_x = 0.0, prev_w = r.w0;
+    for (const auto& [key, w] : r.opening) {
+      const double xk = static_cast<double>(key) * 1e-9;
+      r.volume += (xk - prev_x) * (w + prev_w);  // 2 x trapezoid
+      prev_x = xk, prev_w = w;
+    }
+    r.volume += (kA - prev_x) * prev_w;  // to the tip, where the opening is zero
+    r.metric_volume = 2.0 * m["solid_crack_volume"] / kThickness;
+    r.external_work = m["solid_external_work"];
+    r.elastic = m["solid_elastic_energy"];
+    r.joint = m["solid_joint_energy"];
+    r.balance = m["solid_energy_balance_error"];
+  });
   return r;
 }
 

@@ -67,7 +67,7 @@ void Simulation::choose_dt() {
           fmt::format("time.dt = {:.17g} s disagrees with the {} step {:.17g} s ({}.dt). Remove "
                       "time.dt (the {} step is the run's), or make them equal.",
                       *t.dt, m->name(), *fixed, m->name(), m->name()));
-    if (*fixed > stable)
+    if (*fixed > stable && !t.allow_unstable_dt)
       throw Error(
           fmt::format("{}.dt = {:.6g} s is above the stable step {:.6g} s of another model in the run",
                       m->name(), *fixed, stable));

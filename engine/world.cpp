@@ -1,17 +1,25 @@
 #include "engine/world.hpp"
 
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
 #include <chrono>
+#include <cmath>
 #include <limits>
 
+#include "engine/core/error.hpp"
 #include "engine/mesh/block_assembly.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/mesh/spatial_order.hpp"
 #include "engine/mesh/structured_box.hpp"
+#include "systems/coupling/fluid_solid_model.hpp"
 #include "systems/fluid/fluid_model.hpp"
+#include "systems/fluid/fluid_tables.hpp"
 #include "systems/mesh_conversion_model.hpp"
 #include "systems/solid_model.hpp"
+#include "systems/solid_tables.hpp"
 
 namespace rift {
 
@@ -56,19 +64,65 @@ std::vector<std::string> notch_surfaces(const MeshSpec& spec, const TetMesh& mes
   return names;
 }
 
+namespace {
+
+// A fluid on its own mesh around the solid (scene.fluid->mesh, required with a solid), and the coupling.
+// The run's step is the solid's: fluid.dt / substeps.
+void add_coupled_fluid(World& world, const Scene& scene) {
+  const FluidSpec& fluid = *scene.fluid;
+  const FluidSolidSpec& spec = *scene.fluid_solid;
+  auto& solid = static_cast<SolidModel&>(*world.models.front());
+  const double stable = solid.stable_dt();
+  const int64_t automatic = FluidSolidModel::automatic_substeps(fluid.dt, stable, scene.time.safety);
+  const int64_t substeps = spec.substeps > 0 ? spec.substeps : automatic;
+  if (spec.substeps > 0 && fluid.dt / static_cast<double>(substeps) > stable && !scene.time.allow_unstable_dt)
+    throw Error(fmt::format(
+        "fluid_solid.substeps = {} makes the solid step fluid.dt / substeps = {:.6g} s, above the solid's "
+        "stable "
+        "step {:.6g} s. Use fluid_solid.substeps >= {} ({} at time.safety = {}), or 0 to choose it, or set "
+        "time.allow_unstable_dt: true to run it on purpose.",
+        substeps, fluid.dt / static_cast<double>(substeps), stable,
+        static_cast<int64_t>(std::ceil(fluid.dt / stable)), automatic, scene.time.safety));
+  const double windows = scene.time.end / fluid.dt;
+  if (std::abs(windows - std::round(windows)) > 1e-6 * windows)
+    throw Error(
+        fmt::format("time.end = {:.6g} s is not a whole number of fluid steps of {:.6g} s (fluid.dt): "
+                    "{:.6g}. Make time.end a multiple of fluid.dt, e.g. {:.6g} s.",
+                    scene.time.end, fluid.dt, windows, std::ceil(windows) * fluid.dt));
+  spdlog::info("fluid-solid coupling: {} solid steps of {:.6g} s per fluid step of {:.6g} s{}", substeps,
+               fluid.dt / static_cast<double>(substeps), fluid.dt, spec.substeps > 0 ? "" : " (automatic)");
+  world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh));
+  order_along_curve(*world.fluid_mesh);
+  using solid::col;
+  const char* F = fluid::tet_table;
+  auto model = std::make_unique<FluidModel>(
+      world.store, *world.fluid_mesh, fluid, substeps,
+      std::vector<std::string>{fluid::col(F, "solid_fraction"), fluid::col(F, "absorption"),
+                               fluid::col(F, "solid_velocity")});
+  FluidModel& f = *model;
+  world.models.push_back(std::move(model));
+  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec));
+}
+
+}  // namespace
+
 std::unique_ptr<World> build_world(const Scene& scene) {
   auto world = std::make_unique<World>();
   const auto t0 = std::chrono::steady_clock::now();
-  // A fluid scene may give its mesh as fluid.mesh (the reader refuses solid and fluid together).
-  const MeshSpec& mesh_spec = scene.fluid && scene.fluid->mesh ? *scene.fluid->mesh : scene.mesh;
+  // A fluid scene may give its mesh as fluid.mesh; with a solid, the top-level mesh is the solid's.
+  const MeshSpec& mesh_spec =
+      scene.fluid && scene.fluid->mesh && !scene.solid ? *scene.fluid->mesh : scene.mesh;
   world->mesh = load_mesh(mesh_spec);
   order_along_curve(world->mesh);  // neighbours close in memory (engine/mesh/spatial_order.hpp)
   world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   world->mesh_quality = measure_quality(world->mesh);
   if (scene.solid)
     world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
-  if (scene.fluid)
+  if (scene.fluid && scene.solid) {
+    add_coupled_fluid(*world, scene);
+  } else if (scene.fluid) {
     world->models.push_back(std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
+  }
   // The continuous meshes only when something consumes them (today: an output that asks for the surface).
   if (scene.solid && scene.output.surface)
     world->models.push_back(std::make_unique<MeshConversionModel>(world->store, world->mesh,

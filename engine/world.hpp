@@ -14,6 +14,7 @@ namespace rift {
 
 struct World {
   TetMesh mesh;
+  std::unique_ptr<TetMesh> fluid_mesh;  // with a solid and a fluid: the fluid's own mesh (fluid.mesh)
   MeshQuality mesh_quality;
   double mesh_seconds = 0.0;  // wall time to read or generate the mesh
   Store store;

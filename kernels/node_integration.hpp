@@ -40,6 +40,9 @@ struct NodeIntegrationArgs {
   // is the undamped one with the drag taken at the mean of the two half-step velocities, so its work,
   // -c m v_mean . dx, keeps the energy identity exact; it is booked as `damping` (dissipated, >= 0).
   double mass_damping = 0.0;
+  // 3 per node, or empty: external forces gathered per node (the fluid's, systems/coupling); they join the
+  // loaded faces' (source 2) and their work is external work.
+  std::span<const double> external_node_force = {};
 };
 
 struct NodeStepResult {

@@ -39,6 +39,7 @@ Access NodeIntegrationSystem::access() const {
     reads.push_back(col(N, "contact_force"));
     writes.push_back(col(E, "contact_work"));
   }
+  if (!external_column_.empty()) reads.push_back(col(N, external_column_.c_str()));
   if (mass_damping_ > 0.0) writes.push_back(col(E, "damping"));
   return {reads, writes};
 }
@@ -64,7 +65,8 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       nodes.span<int32_t>("held"),
       prescribed_,
       contact_ ? nodes.span<double>("contact_force") : std::span<double>{},
-      mass_damping_};
+      mass_damping_,
+      external_column_.empty() ? std::span<const double>{} : nodes.span<double>(external_column_)};
   const Table& tets = store_.table(solid::tet_table);
   const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
   const Table& faces = store_.table(solid::face_table);

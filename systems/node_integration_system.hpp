@@ -23,6 +23,9 @@ class NodeIntegrationSystem : public System {
   void run(const StepContext& ctx) override;
 
   size_t non_finite_nodes() const { return non_finite_; }
+  // Also gather the per-node external forces of solid_node.<column> (3 per node; the fluid's), booked as
+  // external work. Before the step graph is built.
+  void add_external_node_force(std::string column) { external_column_ = std::move(column); }
 
  private:
   Store& store_;
@@ -32,7 +35,8 @@ class NodeIntegrationSystem : public System {
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<kernels::NodeStepResult> blocks_;
   size_t non_finite_ = 0;
-  bool contact_ = false;  // solid_node.contact_force exists (a contact system gathers into it)
+  std::string external_column_;  // empty: none
+  bool contact_ = false;         // solid_node.contact_force exists (a contact system gathers into it)
 };
 
 }  // namespace rift

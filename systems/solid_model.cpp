@@ -91,6 +91,22 @@ std::vector<System*> SolidModel::systems() {
   return all;
 }
 
+void SolidModel::accept_fluid_forces() {
+  store_.table(solid::node_table).add<double>("fluid_force", 3);
+  integration_->add_external_node_force("fluid_force");
+}
+
+void SolidModel::add_node_mass(std::span<const double> extra) {
+  Table& nodes = store_.table(solid::node_table);
+  auto mass = nodes.span<double>("mass");
+  auto inv_mass = nodes.span<double>("inv_mass");
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    mass[n] += extra[n];
+    inv_mass[n] = mass[n] > 0 ? 1.0 / mass[n] : 0.0;
+  }
+  store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
+}
+
 size_t SolidModel::joint_count() const {
   return store_.has(solid::joint_table) ? store_.table(solid::joint_table).size() : 0;
 }

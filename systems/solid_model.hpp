@@ -53,6 +53,13 @@ class SolidModel : public Model {
   void write_logs(const std::filesystem::path& dir) const override;
 
   SolidEnergies energies() const;
+  // The fluid's forces on the nodes (systems/coupling): adds solid_node.fluid_force (3, zero), which the
+  // node pass gathers as an external force. Before the step graph is built.
+  void accept_fluid_forces();
+  const SolidSpec& spec() const { return spec_; }
+  // Adds mass to the nodes (the coupling's virtual added mass, 1 per node [kg]); inv_mass and the kinetic
+  // energy at t = 0 follow. Before the first step.
+  void add_node_mass(std::span<const double> extra);
   size_t joint_count() const;
   size_t broken_joint_count() const;
 

@@ -51,13 +51,25 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
   MapReader fluid = doc.section("fluid", false);
   if (has_fluid) {
     scene.fluid = read_fluid_section(fluid, base_dir);
-    if (has_solid)
-      doc.error("fluid", "no fluid section together with a solid section",
-                "the fluid-solid coupling is a later feature; run the fluid in a scene of its own");
-    else if (fluid_mesh && has_mesh)
+    if (has_solid && !fluid_mesh)
+      doc.error("fluid",
+                "a fluid.mesh when the scene also has a solid (the fluid's own mesh, covering the solid)",
+                "no fluid.mesh; the top-level mesh is the solid's");
+    else if (!has_solid && fluid_mesh && has_mesh)
       doc.error("mesh", "no top-level mesh when fluid.mesh is given (nothing else would use it)",
                 "keep one of mesh and fluid.mesh");
   }
+  const bool has_coupling = doc.has("fluid_solid");
+  MapReader coupling = doc.section("fluid_solid", false);
+  if (has_solid && has_fluid)
+    scene.fluid_solid = read_fluid_solid_section(coupling);
+  else if (has_coupling)
+    doc.error("fluid_solid", "a fluid_solid section only in a scene with both a solid and a fluid section",
+              std::string("a scene with ") +
+                  (has_solid   ? "a solid"
+                   : has_fluid ? "a fluid"
+                               : "neither") +
+                  " only");
   MapReader output = doc.section("output", false);
   scene.output = read_output_section(output);
   MapReader checkpoint = doc.section("checkpoint", false);

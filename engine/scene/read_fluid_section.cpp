@@ -103,4 +103,13 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
   return f;
 }
 
+FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
+  FluidSolidSpec c;
+  c.substeps = sec.integer("substeps", IntRule{0, INT32_MAX}, 0);
+  c.beta = sec.real("beta", positive(""), 1.0);
+  c.added_mass = sec.real("added_mass", non_negative(""), 0.0);
+  sec.finish();
+  return c;
+}
+
 }  // namespace rift

@@ -287,6 +287,13 @@ void emit_output(Lines& o, const OutputSpec& out) {
   o.line(1, "surface", out.surface ? "true" : "false");
 }
 
+void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
+  o.line(0, "fluid_solid");
+  o.line(1, "substeps", std::to_string(c.substeps));
+  o.line(1, "beta", yaml_real(c.beta));
+  o.line(1, "added_mass", yaml_real(c.added_mass));
+}
+
 void emit_checkpoint(Lines& o, const CheckpointSpec& c) {
   o.line(0, "checkpoint");
   o.line(1, "every_steps", std::to_string(c.every_steps));
@@ -323,6 +330,7 @@ std::string emit_resolved_yaml(const Scene& scene) {
   if (scene.mesh.file || scene.mesh.generate) emit_mesh(o, scene.mesh);
   if (scene.solid) emit_solid(o, *scene.solid);
   if (scene.fluid) emit_fluid(o, *scene.fluid);
+  if (scene.fluid_solid) emit_fluid_solid(o, *scene.fluid_solid);
   emit_output(o, scene.output);
   emit_checkpoint(o, scene.checkpoint);
   emit_reference(o, scene.reference);

@@ -216,6 +216,18 @@ struct FluidSpec {
   bool ghia_cavity = false;
 };
 
+// The two-way fluid-solid coupling (systems/coupling, docs/coupling.md): the solid immersed in the fluid
+// mesh as a volume fraction. Present exactly when the scene has both a solid and a fluid.
+struct FluidSolidSpec {
+  int64_t substeps = 0;  // solid steps per fluid step; 0: the fewest with dt_s <= time.safety x stable step
+  double beta = 1.0;     // absorption weight: sigma = beta rho_f alpha_s / fluid.dt
+  // c_a: virtual mass c_a rho_f V added to the solid's nodes (V: their share of the solid inside the fluid at
+  // t = 0) and c_a rho_f V a (a: the node's mean acceleration over the last window) added to its fluid force,
+  // so the staggered exchange stays stable for a solid lighter than about the fluid (added-mass
+  // instability). 0: off. It lags the fluid's added mass by one window; no effect at steady acceleration.
+  double added_mass = 0.0;
+};
+
 struct TimeSpec {
   double end = 0.0;                // simulated end time [s]
   std::optional<double> dt;        // requested step [s]; absent: safety x stable step, or fluid.dt
@@ -254,7 +266,8 @@ struct Scene {
   TimeSpec time;
   MeshSpec mesh;                   // neither file nor generate when absent (a fluid scene with fluid.mesh)
   std::optional<SolidSpec> solid;  // absent: no solid systems in the run
-  std::optional<FluidSpec> fluid;  // absent: no fluid; not together with solid (the coupling is later)
+  std::optional<FluidSpec> fluid;  // absent: no fluid; with a solid, fluid.mesh is required
+  std::optional<FluidSolidSpec> fluid_solid;  // with both a solid and a fluid (defaults when not written)
   OutputSpec output;
   CheckpointSpec checkpoint;
   std::vector<ReferenceMetricSpec> reference;  // empty: the scene names no error metrics

@@ -93,8 +93,9 @@ constexpr double kGhiaV[17] = {0.0,      -0.05906, -0.07391, -0.08864, -0.10313,
 
 }  // namespace
 
-FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec)
-    : store_(store), spec_(spec) {
+FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec, int64_t substeps,
+                       std::vector<std::string> coupling_reads)
+    : store_(store), spec_(spec), substeps_(substeps) {
   auto bcs = boundaries_for(spec, mesh);
   try {
     solver_ = std::make_unique<fluid::FluidSolver>(mesh, settings_for(spec), std::move(bcs));
@@ -127,7 +128,7 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec)
   for (const char* c : fluid::step_columns) step.add<double>(c, 1);
   step.add<double>("has_previous", 1);
   step.resize(1);
-  step_ = std::make_unique<FluidStepSystem>(store_, *solver_);
+  step_ = std::make_unique<FluidStepSystem>(store_, *solver_, substeps_, std::move(coupling_reads));
 
   // P1 gradients and sizes for the per-cell output fields.
   const auto x = solver_->nodes();
@@ -169,6 +170,14 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec)
 
 FluidModel::~FluidModel() = default;
 
+std::vector<System*> FluidModel::systems() {
+  std::vector<System*> out;
+  if (before_) out.push_back(before_);
+  out.push_back(step_.get());
+  if (after_) out.push_back(after_);
+  return out;
+}
+
 void FluidModel::cell_fields() {
   const auto u = solver_->velocity();
   const auto conn = solver_->tets();
@@ -197,6 +206,7 @@ double FluidModel::kinetic_energy() const {
 }
 
 std::optional<std::string> FluidModel::check_health(const StepContext& after) {
+  if (after.step % substeps_ != 0) return std::nullopt;  // the fluid did not step (a solid sub-step)
   const fluid::FluidStepReport& r = step_->last_report();
   const auto u = solver_->velocity();
   const auto p = solver_->pressure();

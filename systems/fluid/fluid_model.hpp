@@ -28,12 +28,17 @@ class FluidModel : public Model {
  public:
   // Throws rift::Error naming the scene key when the scene and the mesh disagree (unknown surface, a
   // free-slip surface that is not an axis-aligned plane, ...).
-  FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec);
+  // With a solid: the fluid steps once every `substeps` run steps (FluidStepSystem), after the coupling
+  // wrote `coupling_reads`.
+  FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec, int64_t substeps = 1,
+             std::vector<std::string> coupling_reads = {});
   ~FluidModel() override;
 
   std::string name() const override { return "fluid"; }
-  std::vector<System*> systems() override { return {step_.get()}; }
-  std::optional<double> required_dt() const override { return spec_.dt; }
+  std::vector<System*> systems() override;
+  // The coupling's exchange systems run just before and just after the fluid step (systems/coupling).
+  void surround_step(System* before, System* after) { before_ = before, after_ = after; }
+  std::optional<double> required_dt() const override { return spec_.dt / static_cast<double>(substeps_); }
   std::optional<std::string> check_health(const StepContext& after) override;
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
@@ -41,6 +46,9 @@ class FluidModel : public Model {
   void restored(const StepContext& at) override;
 
   const fluid::FluidSolver& solver() const { return *solver_; }
+  fluid::FluidSolver& solver() { return *solver_; }
+  const FluidSpec& spec() const { return spec_; }
+  int64_t substeps() const { return substeps_; }
   double kinetic_energy() const;  // 1/2 rho sum_n V_n |u_n|^2 (lumped) [J]
   // The centre lines x = 1/2 (u) and y = 1/2 (v) of the mesh's bounding box at its zmin plane, lengths
   // scaled to the unit square and velocities by the speed of the first velocity boundary.
@@ -51,8 +59,11 @@ class FluidModel : public Model {
 
   Store& store_;
   FluidSpec spec_;
+  int64_t substeps_;
   std::unique_ptr<fluid::FluidSolver> solver_;
   std::unique_ptr<FluidStepSystem> step_;
+  System* before_ = nullptr;
+  System* after_ = nullptr;
   std::vector<double> grad_, h_, node_volume_;  // P1 gradients (12 per tet), longest edge, lumped volume
   std::vector<double> divergence_, cfl_;        // output scratch
 };

@@ -196,6 +196,10 @@ class FluidSolver {
   bool pressure_matrix_stale_ = true;
   bool closed_ = false;  // no pressure boundary
   double schur_reference_ = 0.0;
+  // Round-off floor of the Schur residual: 1e-12 x (velocity scale) x sqrt(sum_n V_n^(4/3)), the continuity
+  // residual of a relative 1e-12 velocity perturbation. A fluid at rest starts at round-off, where a
+  // relative reduction cannot be had.
+  double schur_floor_ = 0.0, residual_area_ = 0.0;
   VectorField body_force_fn_;
 };
 

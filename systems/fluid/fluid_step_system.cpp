@@ -14,13 +14,15 @@ Access FluidStepSystem::access() const {
               col(fluid::tet_table, "pressure_matrix_coefficient")};
   for (const char* c : fluid::step_columns) a.writes.push_back(col(fluid::step_table, c));
   a.writes.push_back(col(fluid::step_table, "has_previous"));
+  a.reads = coupling_reads_;
   return a;
 }
 
 void FluidStepSystem::run(const StepContext& ctx) {
   // The run's clock is authoritative (t = step x dt): no drift from summing dt, and a restart starts
   // from the same time bit for bit.
-  solver_.set_time(ctx.time);
+  if ((ctx.step + 1) % every_ != 0) return;
+  solver_.set_time(static_cast<double>(ctx.step + 1 - every_) * ctx.dt);
   last_ = solver_.step();
   Table& nodes = store_.table(fluid::node_table);
   const auto u = solver_.velocity();

@@ -8,9 +8,14 @@
 
 namespace rift {
 
+// With a solid (systems/coupling) the run's step is the solid's and the fluid steps once every `every`
+// of them, on the last: from t = (step + 1 - every) dt to the end of that step. `coupling_reads` are the
+// columns the coupling writes before the fluid steps (ordering only; the solver holds the values).
 class FluidStepSystem : public System {
  public:
-  FluidStepSystem(Store& store, fluid::FluidSolver& solver) : store_(store), solver_(solver) {}
+  FluidStepSystem(Store& store, fluid::FluidSolver& solver, int64_t every = 1,
+                  std::vector<std::string> coupling_reads = {})
+      : store_(store), solver_(solver), every_(every), coupling_reads_(std::move(coupling_reads)) {}
   std::string name() const override { return "fluid_step"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
@@ -21,6 +26,8 @@ class FluidStepSystem : public System {
   Store& store_;
   fluid::FluidSolver& solver_;
   fluid::FluidStepReport last_;
+  int64_t every_;
+  std::vector<std::string> coupling_reads_;
 };
 
 }  // namespace rift

@@ -1,0 +1,93 @@
+#include "kernels/fluid_solid_exchange.hpp"
+
+#include <algorithm>
+
+#include "kernels/tet_intersection.hpp"
+
+namespace rift::kernels {
+
+void tet_mean_vectors(std::span<const double> node_value, std::span<const int32_t> tet_nodes,
+                      std::span<double> out, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t)
+    for (int d = 0; d < 3; ++d) {
+      double s = 0.0;
+      for (int a = 0; a < 4; ++a) s += node_value[3 * static_cast<size_t>(tet_nodes[4 * t + a]) + d];
+      out[3 * t + d] = 0.25 * s;
+    }
+}
+
+namespace {
+void corners(std::span<const double> x, std::span<const int32_t> tet_nodes, int32_t t, double c[4][3]) {
+  for (int a = 0; a < 4; ++a)
+    for (int d = 0; d < 3; ++d)
+      c[a][d] = x[3 * static_cast<size_t>(tet_nodes[4 * static_cast<size_t>(t) + a]) + d];
+}
+}  // namespace
+
+void overlap_volumes(const OverlapArgs& a, size_t begin, size_t end) {
+  double k[4][3], s[4][3];
+  int32_t last_fluid = -1;
+  for (size_t p = begin; p < end; ++p) {
+    const CouplingPair& pair = a.pairs[p];
+    if (pair.fluid != last_fluid) {  // consecutive pairs share their fluid tet
+      corners(a.fluid_x, a.fluid_tet_nodes, pair.fluid, k);
+      last_fluid = pair.fluid;
+    }
+    corners(a.solid_x, a.solid_tet_nodes, pair.solid, s);
+    a.volume[p] = tet_intersection_volume(k, s);
+  }
+}
+
+void pair_ranges(std::span<const CouplingPair> pairs, std::span<int64_t> first) {
+  const size_t n_fluid = first.size() - 1;
+  size_t p = 0;
+  for (size_t k = 0; k <= n_fluid; ++k) {
+    while (p < pairs.size() && static_cast<size_t>(pairs[p].fluid) < k) ++p;
+    first[k] = static_cast<int64_t>(p);
+  }
+}
+
+void solid_to_fluid_cells(const SolidToFluidArgs& a, size_t begin, size_t end) {
+  for (size_t k = begin; k < end; ++k) {
+    double v = 0.0, m[3] = {0.0, 0.0, 0.0};
+    for (int64_t p = a.first[k]; p < a.first[k + 1]; ++p) {
+      const double w = a.pair_volume[p];
+      const size_t s = static_cast<size_t>(a.pairs[p].solid);
+      v += w;
+      for (int d = 0; d < 3; ++d) m[d] += w * a.solid_velocity[3 * s + d];
+    }
+    const double alpha = a.fluid_volume[k] > 0.0 ? std::clamp(v / a.fluid_volume[k], 0.0, 1.0) : 0.0;
+    a.solid_volume[k] = v;
+    a.fraction[k] = alpha;
+    for (int d = 0; d < 3; ++d) a.target[3 * k + d] = v > 0.0 ? m[d] / v : 0.0;
+    a.sigma[k] = a.beta * a.rho * alpha / a.dt;
+  }
+}
+
+void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end) {
+  const double relax = a.beta * a.rho / a.dt, inertia = a.rho / a.dt;
+  for (size_t p = begin; p < end; ++p) {
+    const size_t k = static_cast<size_t>(a.pairs[p].fluid);
+    const double w = a.pair_volume[p];
+    for (int d = 0; d < 3; ++d) {
+      const double u = a.fluid_velocity[3 * k + d];
+      const double penalty = w * relax * (u - a.target[3 * k + d]);
+      a.penalty[3 * p + d] = penalty;
+      a.force[3 * p + d] = penalty + w * (inertia * (u - a.fluid_velocity_old[3 * k + d]) - a.body_force[d]);
+    }
+  }
+}
+
+void gather_solid_node_forces(std::span<const CouplingPair> pairs, std::span<const double> pair_force,
+                              std::span<const int32_t> solid_tet_nodes, std::span<double> node_force) {
+  std::fill(node_force.begin(), node_force.end(), 0.0);
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const size_t s = static_cast<size_t>(pairs[p].solid);
+    for (int c = 0; c < 4; ++c) {
+      const size_t n = static_cast<size_t>(solid_tet_nodes[4 * s + c]);
+      for (int d = 0; d < 3; ++d) node_force[3 * n + d] += 0.25 * pair_force[3 * p + d];
+    }
+  }
+}
+
+}  // namespace rift::kernels

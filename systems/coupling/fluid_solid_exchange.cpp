@@ -1,0 +1,254 @@
+#include "systems/coupling/fluid_solid_exchange.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include "engine/schedule/parallel.hpp"
+#include "kernels/contact_broad_phase.hpp"
+#include "kernels/fluid_solid_exchange.hpp"
+#include "systems/coupling/fluid_solid_tables.hpp"
+#include "systems/fluid/fluid_tables.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+namespace {
+constexpr size_t kTetGrain = 4096, kPairGrain = 1024;
+
+bool window_end(const StepContext& ctx, int64_t substeps) {
+  return (ctx.step + 1) % substeps == 0;
+}
+}  // namespace
+
+SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver, ExchangeSettings settings,
+                                       ExchangePairs& pairs)
+    : store_(store), solver_(solver), settings_(settings), pairs_(pairs) {
+  Table& ft = store_.table(fluid::tet_table);
+  ft.add<double>("solid_volume", 1);
+  ft.add<double>("solid_fraction", 1);
+  ft.add<double>("solid_velocity", 3);
+  ft.add<double>("absorption", 1);
+  ft.add<double>("velocity_before", 3);
+  const size_t nf = ft.size(), ns = store_.table(solid::tet_table).size();
+  pairs_.fluid_ids.resize(nf);
+  pairs_.solid_ids.resize(ns);
+  std::iota(pairs_.fluid_ids.begin(), pairs_.fluid_ids.end(), 0);
+  std::iota(pairs_.solid_ids.begin(), pairs_.solid_ids.end(), 0);
+  // The fluid mesh does not move: its boxes once.
+  pairs_.fluid_lo.resize(3 * nf);
+  pairs_.fluid_hi.resize(3 * nf);
+  kernels::tet_bounding_boxes(solver_.nodes(), solver_.tets(), pairs_.fluid_ids, pairs_.fluid_lo,
+                              pairs_.fluid_hi, 0, nf);
+  pairs_.solid_lo.resize(3 * ns);
+  pairs_.solid_hi.resize(3 * ns);
+  pairs_.solid_velocity.resize(3 * ns);
+  pairs_.fluid_velocity.resize(3 * nf);
+  pairs_.first.resize(nf + 1);
+}
+
+Access SolidToFluidSystem::access() const {
+  using solid::col;
+  const char* F = fluid::tet_table;
+  return {{col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
+           fluid::col(fluid::node_table, "velocity")},
+          {fluid::col(F, "solid_volume"), fluid::col(F, "solid_fraction"), fluid::col(F, "solid_velocity"),
+           fluid::col(F, "absorption"), fluid::col(F, "velocity_before"), col(coupling::state_table, "pairs"),
+           col(coupling::state_table, "cut_cells"), col(coupling::state_table, "solid_volume")}};
+}
+
+void SolidToFluidSystem::run(const StepContext& ctx) {
+  if (window_end(ctx, settings_.substeps)) exchange();
+}
+
+void SolidToFluidSystem::exchange() {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto x = nodes.span<double>("x");
+  const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
+  const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
+  parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
+    kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
+    kernels::tet_mean_vectors(nodes.span<double>("v"), solid_tets, pairs_.solid_velocity, b, e);
+  });
+  kernels::coupling_broad_phase({pairs_.fluid_lo, pairs_.fluid_hi, pairs_.solid_lo, pairs_.solid_hi, 0.0},
+                                pairs_.broad);
+  const auto& list = pairs_.broad.pairs;
+  const size_t np = list.size();
+  if (pairs_.volume.size() < np) {  // grown, never shrunk
+    pairs_.volume.resize(np);
+    pairs_.penalty.resize(3 * np);
+    pairs_.force.resize(3 * np);
+  }
+  const std::span<double> volume(pairs_.volume.data(), np);
+  const kernels::OverlapArgs overlap{solver_.nodes(), solver_.tets(), x, solid_tets, list, volume};
+  parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::overlap_volumes(overlap, b, e); });
+  kernels::pair_ranges(list, pairs_.first);
+
+  Table& ft = store_.table(fluid::tet_table);
+  const kernels::SolidToFluidArgs cells{settings_.rho,
+                                        settings_.beta,
+                                        settings_.dt,
+                                        solver_.volumes(),
+                                        list,
+                                        pairs_.first,
+                                        volume,
+                                        pairs_.solid_velocity,
+                                        ft.span<double>("solid_volume"),
+                                        ft.span<double>("solid_fraction"),
+                                        ft.span<double>("solid_velocity"),
+                                        ft.span<double>("absorption")};
+  const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
+  parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
+    kernels::solid_to_fluid_cells(cells, b, e);
+    kernels::tet_mean_vectors(fluid_u, solver_.tets(), ft.span<double>("velocity_before"), b, e);
+  });
+  restore_solver();
+
+  Table& state = store_.table(coupling::state_table);
+  double covered = 0.0;
+  size_t cut = 0;
+  for (size_t k = 0; k < nf; ++k) {  // in tet order: deterministic
+    covered += cells.solid_volume[k];
+    cut += cells.fraction[k] > 0.0 && cells.fraction[k] < 1.0;
+  }
+  state.span<double>("pairs")[0] = static_cast<double>(np);
+  state.span<double>("cut_cells")[0] = static_cast<double>(cut);
+  state.span<double>("solid_volume")[0] = covered;
+}
+
+void SolidToFluidSystem::restore_solver() {
+  const Table& ft = store_.table(fluid::tet_table);
+  const auto sigma = ft.span<double>("absorption");
+  const auto target = ft.span<double>("solid_velocity");
+  std::copy(sigma.begin(), sigma.end(), solver_.sigma().begin());
+  std::copy(target.begin(), target.end(), solver_.target_velocity().begin());
+  solver_.absorption_changed();
+}
+
+Access FluidToSolidSystem::access() const {
+  using solid::col;
+  const char* F = fluid::tet_table;
+  const char* S = coupling::state_table;
+  Access a{{fluid::col(fluid::node_table, "velocity"), fluid::col(F, "solid_velocity"),
+            fluid::col(F, "velocity_before"), fluid::col(F, "absorption"), col(solid::tet_table, "nodes")},
+           {col(solid::node_table, "fluid_force"), col(S, "exchanges"), col(S, "penalty_scale"),
+            col(S, "force"), col(S, "penalty"), col(S, "absorption"), col(S, "previous_force"),
+            col(S, "previous_change"), col(S, "growing")}};
+  if (settings_.added_mass > 0.0) {
+    a.reads.push_back(col(solid::node_table, "v"));
+    a.reads.push_back(col(solid::node_table, "fluid_added_mass"));
+    a.writes.push_back(col(solid::node_table, "window_velocity"));
+  }
+  return a;
+}
+
+void FluidToSolidSystem::run(const StepContext& ctx) {
+  if (window_end(ctx, settings_.substeps)) exchange();
+}
+
+void FluidToSolidSystem::exchange(bool initial) {
+  const Table& ft = store_.table(fluid::tet_table);
+  const auto fluid_tets = ft.span<int32_t>("nodes");
+  const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
+  const size_t nf = ft.size();
+  parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
+    kernels::tet_mean_vectors(fluid_u, fluid_tets, pairs_.fluid_velocity, b, e);
+  });
+  const auto& list = pairs_.broad.pairs;
+  const size_t np = list.size();
+  kernels::FluidToSolidArgs args;
+  args.rho = settings_.rho;
+  args.beta = initial ? 0.0 : settings_.beta;
+  args.dt = settings_.dt;
+  for (int d = 0; d < 3; ++d) args.body_force[d] = settings_.body_force[d];
+  args.pairs = list;
+  args.pair_volume = {pairs_.volume.data(), np};
+  args.fluid_velocity = pairs_.fluid_velocity;
+  args.fluid_velocity_old = ft.span<double>("velocity_before");
+  args.target = ft.span<double>("solid_velocity");
+  args.penalty = {pairs_.penalty.data(), 3 * np};
+  args.force = {pairs_.force.data(), 3 * np};
+  parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::fluid_to_solid_pairs(args, b, e); });
+  kernels::gather_solid_node_forces(list, args.force, store_.table(solid::tet_table).span<int32_t>("nodes"),
+                                    store_.table(solid::node_table).span<double>("fluid_force"));
+  if (settings_.added_mass > 0.0) add_virtual_mass_force();
+
+  // Totals, in a fixed order. The fluid's own absorption force, sigma_K |K| (ubar_K - u_s,K), is summed
+  // independently of the pairs: with the penalty total it checks Newton's third law.
+  Table& state = store_.table(coupling::state_table);
+  double force[3] = {0, 0, 0}, penalty[3] = {0, 0, 0}, absorption[3] = {0, 0, 0}, scale = 0.0;
+  for (size_t p = 0; p < np; ++p)
+    for (int d = 0; d < 3; ++d) {
+      force[d] += args.force[3 * p + d];
+      penalty[d] += args.penalty[3 * p + d];
+      scale += std::abs(args.penalty[3 * p + d]);
+    }
+  const auto sigma = ft.span<double>("absorption");
+  const auto target = ft.span<double>("solid_velocity");
+  for (size_t k = 0; k < nf && !initial; ++k)
+    if (sigma[k] != 0.0)
+      for (int d = 0; d < 3; ++d)
+        absorption[d] += sigma[k] * fluid_volume_[k] * (pairs_.fluid_velocity[3 * k + d] - target[3 * k + d]);
+  watch_oscillation(force);
+  state.span<double>("exchanges")[0] += 1.0;
+  state.span<double>("penalty_scale")[0] = scale;
+  for (int d = 0; d < 3; ++d) {
+    state.span<double>("force")[d] = force[d];
+    state.span<double>("penalty")[d] = penalty[d];
+    state.span<double>("absorption")[d] = absorption[d];
+  }
+}
+
+void FluidToSolidSystem::set_added_mass() {
+  Table& nodes = store_.table(solid::node_table);
+  nodes.add<double>("fluid_added_mass", 1);
+  nodes.add<double>("window_velocity", 3);
+  auto extra = nodes.span<double>("fluid_added_mass");
+  const auto conn = store_.table(solid::tet_table).span<int32_t>("nodes");
+  const auto& list = pairs_.broad.pairs;
+  for (size_t p = 0; p < list.size(); ++p)  // pair order: deterministic
+    for (int c = 0; c < 4; ++c)
+      extra[static_cast<size_t>(conn[4 * static_cast<size_t>(list[p].solid) + c])] +=
+          0.25 * settings_.added_mass * settings_.rho * pairs_.volume[p];
+  const auto v = nodes.span<double>("v");
+  std::copy(v.begin(), v.end(), nodes.span<double>("window_velocity").begin());
+}
+
+// c_a rho_f V (a - g) with a the node's mean acceleration over the window just ended: the lagged estimate
+// of the fluid's added-mass force, which the virtual mass then cancels (the solid sees m + m_a on both
+// sides), less the weight the node pass gives the virtual mass.
+void FluidToSolidSystem::add_virtual_mass_force() {
+  Table& nodes = store_.table(solid::node_table);
+  const auto extra = nodes.span<double>("fluid_added_mass");
+  const auto v = nodes.span<double>("v");
+  auto v_window = nodes.span<double>("window_velocity");
+  auto force = nodes.span<double>("fluid_force");
+  for (size_t i = 0; i < v.size(); ++i) {
+    force[i] += extra[i / 3] * ((v[i] - v_window[i]) / settings_.dt - settings_.solid_gravity[i % 3]);
+    v_window[i] = v[i];
+  }
+}
+
+// The added-mass instability of a staggered exchange shows as a total fluid force whose change flips sign
+// and grows from one fluid step to the next; `growing` counts such steps in a row (check_health stops at 4).
+void FluidToSolidSystem::watch_oscillation(const double force[3]) {
+  Table& state = store_.table(coupling::state_table);
+  auto previous = state.span<double>("previous_force");
+  auto change = state.span<double>("previous_change");
+  double& growing = state.span<double>("growing")[0];
+  double delta[3], dot = 0.0, norm_old = 0.0, norm = 0.0, size = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    delta[d] = force[d] - previous[d];
+    dot += delta[d] * change[d];
+    norm_old += change[d] * change[d];
+    norm += delta[d] * delta[d];
+    size += force[d] * force[d];
+  }
+  const bool flips_and_grows = norm_old > 0.0 && -dot > norm_old && norm > 1e-12 * size;
+  growing = flips_and_grows ? growing + 1.0 : 0.0;
+  for (int d = 0; d < 3; ++d) {
+    change[d] = delta[d];
+    previous[d] = force[d];
+  }
+}
+
+}  // namespace rift

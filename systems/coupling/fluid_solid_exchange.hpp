@@ -1,0 +1,85 @@
+#pragma once
+// The two halves of the fluid-solid exchange as systems (kernels/fluid_solid_exchange.hpp has the
+// formulas). The run's step is the solid's; a window of `substeps` solid steps makes one fluid step, and
+// on the last step of each window (loose, sequential coupling, fluid.md 1.7):
+//   1. SolidToFluidSystem: the solid at the window's end -> volume fraction, solid velocity and absorption
+//      on the fluid tets (into the solver and the store);
+//   2. the fluid steps (FluidStepSystem) to the window's end;
+//   3. FluidToSolidSystem: the fluid's force on every solid node, held over the next window.
+// Both share the window's candidate pairs and overlap volumes (ExchangePairs).
+#include <cstdint>
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/schedule/system.hpp"
+#include "kernels/volume_fraction.hpp"
+#include "systems/fluid/fluid_solver.hpp"
+
+namespace rift {
+
+struct ExchangeSettings {
+  int64_t substeps = 1;                   // solid steps per fluid step
+  double beta = 1.0;                      // absorption weight
+  double rho = 0.0;                       // fluid density [kg/m^3]
+  double dt = 0.0;                        // fluid step [s]
+  std::array<double, 3> body_force{};     // fluid body force [N/m^3]
+  double added_mass = 0.0;                // c_a (FluidSolidSpec::added_mass)
+  std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
+};
+
+// Scratch of one exchange, sized once and reused (grown only when the pair count grows).
+struct ExchangePairs {
+  kernels::CouplingBroadPhaseWorkspace broad;
+  std::vector<int32_t> fluid_ids, solid_ids;  // 0, 1, 2, ... (the box kernel takes id lists)
+  std::vector<double> fluid_lo, fluid_hi, solid_lo, solid_hi;
+  std::vector<double> volume, penalty, force;  // 1, 3, 3 per pair
+  std::vector<int64_t> first;                  // per fluid tet + 1
+  std::vector<double> solid_velocity;          // mean velocity per solid tet
+  std::vector<double> fluid_velocity;          // mean velocity per fluid tet after the step
+};
+
+class SolidToFluidSystem : public System {
+ public:
+  SolidToFluidSystem(Store& store, fluid::FluidSolver& solver, ExchangeSettings settings,
+                     ExchangePairs& pairs);
+  std::string name() const override { return "solid_to_fluid"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+  void exchange();  // unconditionally (the initial exchange at t = 0)
+  // After a restart: hand the stored absorption and solid velocity back to the solver.
+  void restore_solver();
+
+ private:
+  Store& store_;
+  fluid::FluidSolver& solver_;
+  ExchangeSettings settings_;
+  ExchangePairs& pairs_;
+};
+
+class FluidToSolidSystem : public System {
+ public:
+  // fluid_volume: |K| per fluid tet (the solver's), for the fluid's side of the force balance.
+  FluidToSolidSystem(Store& store, ExchangeSettings settings, ExchangePairs& pairs,
+                     std::span<const double> fluid_volume)
+      : store_(store), settings_(settings), pairs_(pairs), fluid_volume_(fluid_volume) {}
+  std::string name() const override { return "fluid_to_solid"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+  // initial: the exchange at t = 0, before the fluid has felt the solid: only the body-force part
+  // (buoyancy). The absorption's reaction is not known until the fluid has stepped with it.
+  void exchange(bool initial = false);
+  // The virtual added mass per solid node from the current pairs, c_a rho_f (share of V_KS): into
+  // solid_node.fluid_added_mass, which it creates, with solid_node.window_velocity = v.
+  void set_added_mass();
+
+ private:
+  void add_virtual_mass_force();
+  void watch_oscillation(const double force[3]);
+
+  Store& store_;
+  ExchangeSettings settings_;
+  ExchangePairs& pairs_;
+  std::span<const double> fluid_volume_;
+};
+
+}  // namespace rift

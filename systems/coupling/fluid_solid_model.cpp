@@ -1,0 +1,153 @@
+#include "systems/coupling/fluid_solid_model.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "engine/scene/output_fields.hpp"
+#include "systems/coupling/fluid_solid_tables.hpp"
+#include "systems/fluid/fluid_tables.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+int64_t FluidSolidModel::automatic_substeps(double fluid_dt, double solid_stable_dt, double safety) {
+  const double n = fluid_dt / (safety * solid_stable_dt);
+  return std::max<int64_t>(1, static_cast<int64_t>(std::ceil(n * (1.0 - 1e-12))));
+}
+
+FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid,
+                                 const FluidSolidSpec& spec)
+    : store_(store), spec_(spec) {
+  settings_.substeps = fluid.substeps();
+  settings_.beta = spec.beta;
+  settings_.rho = fluid.spec().density;
+  settings_.dt = fluid.spec().dt;
+  settings_.body_force = fluid.spec().body_force;
+  settings_.added_mass = spec.added_mass;
+  settings_.solid_gravity = solid.spec().gravity;
+  Table& state = store_.add_table(coupling::state_table);
+  for (const char* c : {"exchanges", "pairs", "cut_cells", "solid_volume", "penalty_scale"})
+    state.add<double>(c, 1);
+  for (const char* c : {"force", "penalty", "absorption", "previous_force", "previous_change"})
+    state.add<double>(c, 3);
+  state.add<double>("growing", 1);
+  state.resize(1);
+  solid.accept_fluid_forces();
+  to_fluid_ = std::make_unique<SolidToFluidSystem>(store_, fluid.solver(), settings_, pairs_);
+  to_solid_ = std::make_unique<FluidToSolidSystem>(store_, settings_, pairs_, fluid.solver().volumes());
+  fluid.surround_step(to_fluid_.get(), to_solid_.get());
+  for (double v : store_.table(solid::tet_table).span<double>("volume0")) solid_volume_ += v;
+  // The exchange at t = 0: the fluid's first step sees the solid, and the first window already feels the
+  // fluid's body force (buoyancy); the absorption's reaction follows from the first fluid step on.
+  to_fluid_->exchange();
+  if (spec.added_mass > 0.0) {
+    to_solid_->set_added_mass();
+    solid.add_node_mass(store_.table(solid::node_table).span<double>("fluid_added_mass"));
+  }
+  to_solid_->exchange(/*initial=*/true);
+  store_.table(coupling::state_table).span<double>("growing")[0] = 0.0;
+  store_.table(coupling::state_table).span<double>("exchanges")[0] = 0.0;
+}
+
+FluidSolidModel::~FluidSolidModel() = default;
+
+void FluidSolidModel::restored(const StepContext&) {
+  to_fluid_->restore_solver();
+}
+
+std::optional<std::string> FluidSolidModel::check_health(const StepContext& after) {
+  const Table& state = store_.table(coupling::state_table);
+  const auto force = state.span<double>("force");
+  const auto penalty = state.span<double>("penalty");
+  const auto absorption = state.span<double>("absorption");
+  const double t_fluid = static_cast<double>(after.step / settings_.substeps) * settings_.dt;
+  for (int d = 0; d < 3; ++d)
+    if (!std::isfinite(force[d]))
+      return fmt::format(
+          "the fluid's force on the solid is not finite after the fluid step ending at t = {:.6g} s. Likely "
+          "cause: the fluid step diverged (its own guard reports why), or the solid moved so fast that the "
+          "absorption overflowed. What to change: lower fluid.dt (with it the solid's window of "
+          "fluid_solid.substeps steps).",
+          t_fluid);
+  if (state.span<double>("growing")[0] >= 4.0) {
+    const Table& nodes = store_.table(solid::node_table);
+    double mass = 0.0;
+    for (double m : nodes.span<double>("mass")) mass += m;
+    return fmt::format(
+        "the fluid's force on the solid oscillates with a growing amplitude: its change has flipped sign and "
+        "grown for 4 fluid steps in a row, up to t = {:.6g} s (force now ({:.4g}, {:.4g}, {:.4g}) N). Likely "
+        "cause: the added-mass instability of the staggered exchange. The solid's mean density is {:.3g} "
+        "times the fluid's ({:.6g} kg/m^3); when the mass of fluid the solid must push aside is comparable "
+        "to its own, the force of one window over-corrects the next. What to change: set "
+        "fluid_solid.added_mass: 1 (a virtual mass that cancels the lagged added-mass force), or make the "
+        "solid denser than the fluid. A smaller fluid.dt does not help this instability.",
+        t_fluid, force[0], force[1], force[2], mass / (settings_.rho * solid_volume_), settings_.rho);
+  }
+  // Newton's third law: the solid's penalty force is minus what the fluid's absorption felt, exactly but
+  // for round-off (kernels/fluid_solid_exchange.hpp). A gap means overlapping solid tets (alpha clamped).
+  const double scale = state.span<double>("penalty_scale")[0];  // sum of |pair penalty|: the round-off scale
+  double gap = 0.0;
+  for (int d = 0; d < 3; ++d) gap = std::max(gap, std::abs(penalty[d] - absorption[d]));
+  if (gap > 1e-9 * scale && gap > 0.0)
+    return fmt::format(
+        "the fluid's absorption force ({:.6g}, {:.6g}, {:.6g}) N and the solid's penalty force ({:.6g}, "
+        "{:.6g}, "
+        "{:.6g}) N differ by {:.3g} N after the fluid step ending at t = {:.6g} s: momentum is not exchanged "
+        "equal and opposite. Likely cause: solid tets that overlap (the volume fraction is clamped to 1 "
+        "where they do), e.g. pieces pushed into each other. What to change: enable solid.contact so pieces "
+        "cannot interpenetrate, or lower fluid.dt.",
+        absorption[0], absorption[1], absorption[2], penalty[0], penalty[1], penalty[2], gap, t_fluid);
+  return std::nullopt;
+}
+
+void FluidSolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
+  for (XdmfGrid& g : grids) {
+    if (g.name == "fluid" && wants_field(fields, "solid_fraction")) {
+      const Table& ft = store_.table(fluid::tet_table);
+      g.fields.push_back({"solid_fraction", Center::cell, 1, ElementType::f64,
+                          ft.span<double>("solid_fraction").data(), ft.size()});
+    }
+    if (g.name == "solid" && wants_field(fields, "fluid_force")) {
+      const Table& nodes = store_.table(solid::node_table);
+      g.fields.push_back({"fluid_force", Center::node, 3, ElementType::f64,
+                          nodes.span<double>("fluid_force").data(), nodes.size()});
+    }
+  }
+}
+
+void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>>& row) {
+  const Table& state = store_.table(coupling::state_table);
+  const auto force = state.span<double>("force");
+  const auto penalty = state.span<double>("penalty");
+  row.emplace_back("fluid_solid_force_x", force[0]);
+  row.emplace_back("fluid_solid_force_y", force[1]);
+  row.emplace_back("fluid_solid_force_z", force[2]);
+  row.emplace_back("fluid_solid_penalty_x", penalty[0]);
+  row.emplace_back("fluid_solid_penalty_y", penalty[1]);
+  row.emplace_back("fluid_solid_penalty_z", penalty[2]);
+  row.emplace_back("fluid_solid_solid_volume", state.span<double>("solid_volume")[0]);
+  row.emplace_back("fluid_solid_cut_cells", state.span<double>("cut_cells")[0]);
+  row.emplace_back("fluid_solid_pairs", state.span<double>("pairs")[0]);
+}
+
+void FluidSolidModel::summarize(nlohmann::json& summary) const {
+  const Table& state = store_.table(coupling::state_table);
+  auto& s = summary["fluid_solid"];
+  s["substeps"] = settings_.substeps;
+  s["beta"] = settings_.beta;
+  s["added_mass"] = settings_.added_mass;
+  s["exchanges"] = static_cast<int64_t>(state.span<double>("exchanges")[0]);
+  s["pairs"] = static_cast<int64_t>(state.span<double>("pairs")[0]);
+  s["cut_cells"] = static_cast<int64_t>(state.span<double>("cut_cells")[0]);
+  s["solid_volume"] = solid_volume_;
+  s["solid_volume_in_fluid"] = state.span<double>("solid_volume")[0];
+  const auto f = state.span<double>("force");
+  const auto p = state.span<double>("penalty");
+  const auto a = state.span<double>("absorption");
+  s["force"] = {f[0], f[1], f[2]};
+  s["penalty"] = {p[0], p[1], p[2]};
+  s["absorption"] = {a[0], a[1], a[2]};
+}
+
+}  // namespace rift

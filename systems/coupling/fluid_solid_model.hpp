@@ -1,0 +1,50 @@
+#pragma once
+// The two-way fluid-solid coupling (docs/coupling.md): the solid immersed in the fluid's own mesh as a
+// volume fraction, the flow inside it relaxed to its velocity by an implicit absorption, and the fluid's
+// force handed back to the solid's nodes. Exists only in a scene with both a solid and a fluid.
+//
+// It owns the two exchange systems and places them around the fluid step (FluidModel::surround_step);
+// the run's step is the solid's, fluid.dt = substeps x that. At t = 0 it exchanges once, so the first
+// window already feels the fluid (buoyancy of a fluid at rest).
+//
+// Outputs: solid_fraction on the fluid grid, fluid_force on the solid grid; time-series columns
+// fluid_solid_*; summary metrics.fluid_solid. Health: a non-finite fluid force, or a fluid force total
+// that disagrees with the fluid's absorption (Newton's third law), stops the run with a diagnosis.
+#include <memory>
+
+#include "engine/core/table.hpp"
+#include "engine/model.hpp"
+#include "engine/scene/scene.hpp"
+#include "systems/coupling/fluid_solid_exchange.hpp"
+#include "systems/fluid/fluid_model.hpp"
+#include "systems/solid_model.hpp"
+
+namespace rift {
+
+class FluidSolidModel : public Model {
+ public:
+  FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid, const FluidSolidSpec& spec);
+  ~FluidSolidModel() override;
+
+  std::string name() const override { return "fluid_solid"; }
+  std::vector<System*> systems() override { return {}; }  // placed by the fluid model
+  void restored(const StepContext& at) override;
+  std::optional<std::string> check_health(const StepContext& after) override;
+  void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
+  void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
+  void summarize(nlohmann::json& summary) const override;
+
+  // The fewest solid steps per fluid step that keep dt_s <= safety x the solid's stable step.
+  static int64_t automatic_substeps(double fluid_dt, double solid_stable_dt, double safety);
+
+ private:
+  Store& store_;
+  FluidSolidSpec spec_;
+  ExchangeSettings settings_;
+  double solid_volume_ = 0.0;  // of the solid at t = 0
+  ExchangePairs pairs_;
+  std::unique_ptr<SolidToFluidSystem> to_fluid_;
+  std::unique_ptr<FluidToSolidSystem> to_solid_;
+};
+
+}  // namespace rift

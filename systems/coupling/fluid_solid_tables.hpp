@@ -1,0 +1,21 @@
+#pragma once
+// Columns the fluid-solid coupling (fluid_solid_model.hpp) adds to the store, so outputs, the state hash
+// and checkpoints cover the exchange:
+//
+// fluid_tet (fluid_tables.hpp): solid_volume (1, |K ∩ Omega_s| [m^3]), solid_fraction (1, alpha_s),
+//            solid_velocity (3, u_s,K the flow is relaxed to), absorption (1, sigma [kg/(m^3 s)]),
+//            velocity_before (3, the mean fluid velocity of K at the start of the fluid step)
+// solid_node (solid_tables.hpp): fluid_force (3, the fluid's force on the node, held over a window of
+//            solid sub-steps [N]); with fluid_solid.added_mass: fluid_added_mass (1, the virtual mass [kg],
+//            already in `mass`), window_velocity (3, v at the last exchange)
+// fluid_solid: one row: exchanges (number so far), pairs and cut_cells (of the last exchange),
+//            solid_volume (the solid volume inside the fluid mesh [m^3]), force (3, the total fluid force
+//            on the solid [N]), penalty (3, its absorption part), penalty_scale (sum of |penalty| over pairs
+//            and components: the round-off scale of the balance), absorption (3, the fluid's absorption force
+//            summed over its tets: minus `penalty` to round-off), previous_force (3), previous_change (3) and
+//            growing (1): the watch for a growing oscillation of the force (added-mass instability)
+namespace rift::coupling {
+
+inline constexpr const char* state_table = "fluid_solid";
+
+}  // namespace rift::coupling

@@ -61,6 +61,7 @@ void solid_to_fluid_cells(const SolidToFluidArgs& a, size_t begin, size_t end) {
     a.fraction[k] = alpha;
     for (int d = 0; d < 3; ++d) a.target[3 * k + d] = v > 0.0 ? m[d] / v : 0.0;
     a.sigma[k] = a.beta * a.rho * alpha / a.dt;
+    a.pair_weight[k] = v > a.fluid_volume[k] ? a.fluid_volume[k] / v : 1.0;
   }
 }
 
@@ -68,7 +69,7 @@ void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end) {
   const double relax = a.beta * a.rho / a.dt, inertia = a.rho / a.dt;
   for (size_t p = begin; p < end; ++p) {
     const size_t k = static_cast<size_t>(a.pairs[p].fluid);
-    const double w = a.pair_volume[p];
+    const double w = a.pair_weight[k] * a.pair_volume[p];
     for (int d = 0; d < 3; ++d) {
       const double u = a.fluid_velocity[3 * k + d];
       const double penalty = w * relax * (u - a.target[3 * k + d]);
@@ -88,6 +89,53 @@ void gather_solid_node_forces(std::span<const CouplingPair> pairs, std::span<con
       for (int d = 0; d < 3; ++d) node_force[3 * n + d] += 0.25 * pair_force[3 * p + d];
     }
   }
+}
+
+namespace {
+// Barycentric coordinates of point q in the tet with corners c (Cramer's rule on [c1-c0, c2-c0, c3-c0]).
+void barycentric(const double c[4][3], const double* q, double lambda[4]) {
+  double e[3][3], r[3];
+  for (int d = 0; d < 3; ++d) {
+    for (int a = 0; a < 3; ++a) e[a][d] = c[a + 1][d] - c[0][d];
+    r[d] = q[d] - c[0][d];
+  }
+  auto det3 = [](const double u[3], const double v[3], const double w[3]) {
+    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+           u[2] * (v[0] * w[1] - v[1] * w[0]);
+  };
+  const double det = det3(e[0], e[1], e[2]);
+  lambda[1] = det3(r, e[1], e[2]) / det;
+  lambda[2] = det3(e[0], r, e[2]) / det;
+  lambda[3] = det3(e[0], e[1], r) / det;
+  lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
+}
+}  // namespace
+
+size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const int32_t> fluid_tet_nodes,
+                                std::span<const double> field, std::span<const double> points,
+                                std::span<const CouplingPair> candidates, std::span<double> out) {
+  const size_t n = out.size();
+  size_t outside = 0, p = 0;
+  for (size_t k = 0; k < n; ++k) {
+    double best = -1e300, value = 0.0;
+    for (; p < candidates.size() && static_cast<size_t>(candidates[p].fluid) == k; ++p) {
+      const size_t t = static_cast<size_t>(candidates[p].solid);
+      double c[4][3], lambda[4];
+      corners(fluid_x, fluid_tet_nodes, static_cast<int32_t>(t), c);
+      barycentric(c, &points[3 * k], lambda);
+      const double low = std::min(std::min(lambda[0], lambda[1]), std::min(lambda[2], lambda[3]));
+      if (low > best) {
+        best = low;
+        value = 0.0;
+        for (int a = 0; a < 4; ++a)
+          value += lambda[a] * field[static_cast<size_t>(fluid_tet_nodes[4 * t + a])];
+      }
+    }
+    const bool found = best >= -1e-9;
+    out[k] = found ? value : 0.0;
+    outside += found ? 0 : 1;
+  }
+  return outside;
 }
 
 }  // namespace rift::kernels

@@ -9,16 +9,16 @@
 //     sigma_K = beta rho_f alpha_K / dt: the implicit absorption that relaxes the flow inside the solid
 //     to the solid's velocity (beta = 1 halves the slip in one step).
 //   fluid -> solid (after it): the force of the fluid on the part K ∩ S of the solid,
-//     F_KS = V_KS [ beta rho_f / dt (ubar_K - u_s,K)  +  rho_f (ubar_K - ubar_K^old) / dt  -  f ],
+//     F_KS = w_K V_KS [ beta rho_f / dt (ubar_K - u_s,K)  +  rho_f (ubar_K - ubar_K^old) / dt  -  f ],
 //     ubar_K the mean of K's node velocities after the step, ubar_K^old before it, f the fluid body force
-//     per unit volume. This is the traction of the surrounding fluid on the solid's surface, read off the
-//     momentum balance of the fictitious fluid inside the solid (Uhlmann 2005, J. Comput. Phys. 209):
-//     traction = absorption it felt + its momentum change - its body force. In a fluid at rest it is
-//     Archimedes' buoyancy, -f |S|.
+//     per unit volume, w_K = min(1, |K| / |K ∩ Omega_s|) (1 unless solid tets overlap). This is the traction
+//     of the surrounding fluid on the solid's surface, read off the momentum balance of the fictitious fluid
+//     inside the solid (Uhlmann 2005, J. Comput. Phys. 209): traction = absorption it felt + its momentum
+//     change - its body force. In a fluid at rest it is Archimedes' buoyancy, -f |S|.
 //
 // Newton's third law, exactly: the fluid's lumped absorption over K is sigma_K (|K|/4) sum_a (u_a - u_s,K)
-// = beta rho_f / dt |K ∩ Omega_s| (ubar_K - u_s,K), which is minus the sum over S of the penalty part of
-// F_KS whenever alpha_K <= 1 (the clamp acts only where solid tets overlap).
+// = beta rho_f / dt alpha_K |K| (ubar_K - u_s,K), which is minus the sum over S of the penalty part of
+// F_KS, also where the clamp acts (w_K).
 //
 // Determinism: every output row is written by one call from its own inputs in a fixed order, so ranges
 // may be split between threads freely; gather_solid_node_forces is sequential in pair order.
@@ -58,8 +58,11 @@ struct SolidToFluidArgs {
   std::span<const int64_t> first;          // pair_ranges
   std::span<const double> pair_volume;     // V_KS
   std::span<const double> solid_velocity;  // ubar_S, 3 per solid tet
-  // out, per fluid tet: |K ∩ Omega_s| (1), alpha_K (1), u_s,K (3; 0 where there is no solid), sigma_K (1)
-  std::span<double> solid_volume, fraction, target, sigma;
+  // out, per fluid tet: |K ∩ Omega_s| (1), alpha_K (1), u_s,K (3; 0 where there is no solid), sigma_K (1),
+  // and the weight of K's pairs in the force, min(1, |K| / sum_S V_KS) (1): below 1 only where solid tets
+  // overlap (joints in compression interpenetrate a little), so that the clamped alpha and the pairs'
+  // force still balance exactly.
+  std::span<double> solid_volume, fraction, target, sigma, pair_weight;
 };
 
 // Fluid tets [begin, end).
@@ -73,6 +76,7 @@ struct FluidToSolidArgs {
   std::span<const double> fluid_velocity;      // ubar_K after the fluid step, 3 per fluid tet
   std::span<const double> fluid_velocity_old;  // ubar_K before it
   std::span<const double> target;              // u_s,K the step relaxed to
+  std::span<const double> pair_weight;         // per fluid tet (SolidToFluidArgs::pair_weight)
   std::span<double> penalty;                   // out, 3 per pair: the penalty part of F_KS [N]
   std::span<double> force;                     // out, 3 per pair: F_KS [N]
 };
@@ -84,5 +88,15 @@ void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end);
 // the consistent load of a uniform force density on a linear tet). Overwrites node_force.
 void gather_solid_node_forces(std::span<const CouplingPair> pairs, std::span<const double> pair_force,
                               std::span<const int32_t> solid_tet_nodes, std::span<double> node_force);
+
+// P1 interpolation of a nodal field at points (the fluid's pressure at the centroids of wetted solid faces).
+// candidates: pairs (point, fluid tet) whose boxes overlap, sorted by point: coupling_broad_phase with the
+// points as its first side (zero-size boxes) and the fluid tets as its second. Per point the candidate
+// whose smallest barycentric coordinate is largest wins (the containing tet; the first in id order on a
+// shared face), out[k] = sum_a lambda_a field[n_a]. A point with no candidate, or outside every
+// candidate by more than 1e-9 in barycentric terms, gets 0; their number is returned.
+size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const int32_t> fluid_tet_nodes,
+                                std::span<const double> field, std::span<const double> points,
+                                std::span<const CouplingPair> candidates, std::span<double> out);
 
 }  // namespace rift::kernels

@@ -15,9 +15,11 @@ struct FaceLoad {
 };
 
 // x: 3 per node; face_nodes: 3 per face, ordered so (x1-x0)x(x2-x0) points out of the body;
-// face_load: per face, index into loads; corner_force: out, 9 per face.
+// face_load: per face, index into loads; corner_force: out, 9 per face. face_pressure (1 per face, or
+// empty): a pressure of the face's own added to its load's (the fluid's on a wetted face).
 void surface_loads(std::span<const double> x, std::span<const int32_t> face_nodes,
                    std::span<const int32_t> face_load, std::span<const FaceLoad> loads,
-                   std::span<double> corner_force, size_t begin, size_t end);
+                   std::span<double> corner_force, size_t begin, size_t end,
+                   std::span<const double> face_pressure = {});
 
 }  // namespace rift::kernels

@@ -57,6 +57,8 @@ class SolidModel : public Model {
   // node pass gathers as an external force. Before the step graph is built.
   void accept_fluid_forces();
   const SolidSpec& spec() const { return spec_; }
+  // The scene's boundary condition behind each load index of solid_load_face.load.
+  const std::vector<SolidBoundarySpec>& load_conditions() const { return load_conditions_; }
   // Adds mass to the nodes (the coupling's virtual added mass, 1 per node [kg]); inv_mass and the kinetic
   // energy at t = 0 follow. Before the first step.
   void add_node_mass(std::span<const double> extra);

@@ -27,6 +27,7 @@ Access SurfaceLoadSystem::access() const {
   // Reading the log orders this system before the joints' pass that appends to it: a joint broken in
   // step n is pressed from step n + 1 on, on any thread count.
   if (has_crack_faces_) reads.push_back(col(solid::event_table, "joint"));
+  if (store_.table(F).has("fluid_pressure")) reads.push_back(col(F, "fluid_pressure"));
   return {reads, {col(F, "corner_force")}};
 }
 
@@ -37,6 +38,8 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
     const double scale = s.function(ctx.time);
     kernels::FaceLoad& L = values_[i];
     L = {};
+    if (s.kind == SolidBoundarySpec::Kind::fluid_pressure)
+      continue;  // the face's own value, solid_load_face.fluid_pressure (written by the coupling)
     if (s.kind == SolidBoundarySpec::Kind::pressure)
       L.pressure = scale;
     else if (s.kind == SolidBoundarySpec::Kind::in_situ)
@@ -49,8 +52,10 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
   const auto nodes = faces.span<int32_t>("nodes");
   const auto load = faces.span<int32_t>("load");
   const auto force = faces.span<double>("corner_force");
+  const std::span<const double> wetted =
+      faces.has("fluid_pressure") ? faces.span<double>("fluid_pressure") : std::span<double>{};
   parallel_for(crack_face_begin_, 2048, [&](size_t begin, size_t end) {
-    kernels::surface_loads(x, nodes, load, values_, force, begin, end);
+    kernels::surface_loads(x, nodes, load, values_, force, begin, end, wetted);
   });
   if (!has_crack_faces_) return;
   // Each broken joint's two faces are adjacent rows; every row is written by one joint only.

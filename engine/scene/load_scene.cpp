@@ -59,11 +59,31 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
       doc.error("mesh", "no top-level mesh when fluid.mesh is given (nothing else would use it)",
                 "keep one of mesh and fluid.mesh");
   }
+  if (has_solid && !has_fluid)
+    for (const auto& bc : scene.solid->boundaries)
+      if (bc.kind == SolidBoundarySpec::Kind::fluid_pressure) {
+        doc.error(
+            "solid", "no boundary of type fluid_pressure in a scene without a fluid section",
+            "surface '" + bc.surface + "' is fluid_pressure; add a fluid section or use type: pressure");
+        break;
+      }
   const bool has_coupling = doc.has("fluid_solid");
   MapReader coupling = doc.section("fluid_solid", false);
-  if (has_solid && has_fluid)
+  if (has_solid && has_fluid) {
     scene.fluid_solid = read_fluid_solid_section(coupling);
-  else if (has_coupling)
+    bool wetted = false;
+    for (const auto& bc : scene.solid->boundaries)
+      wetted = wetted || bc.kind == SolidBoundarySpec::Kind::fluid_pressure;
+    const bool by_faces = scene.fluid_solid->force == FluidSolidSpec::Force::wetted_faces;
+    if (wetted != by_faces)
+      doc.error(
+          has_coupling ? "fluid_solid" : "solid",
+          by_faces ? "fluid_solid.force: wetted_faces with at least one solid boundary of type fluid_pressure"
+                   : "fluid_solid.force: wetted_faces when a solid boundary is of type fluid_pressure",
+          by_faces ? "no fluid_pressure boundary, so nothing would feel the fluid"
+                   : "the volume force already includes the fluid's pressure; with wetted faces as well it "
+                     "would count twice");
+  } else if (has_coupling)
     doc.error("fluid_solid", "a fluid_solid section only in a scene with both a solid and a fluid section",
               std::string("a scene with ") +
                   (has_solid   ? "a solid"

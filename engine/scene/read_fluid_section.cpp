@@ -105,6 +105,8 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
 
 FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   FluidSolidSpec c;
+  static constexpr std::array<std::string_view, 2> kForces{"volume", "wetted_faces"};
+  c.force = static_cast<FluidSolidSpec::Force>(sec.choice("force", kForces, 0));
   c.substeps = sec.integer("substeps", IntRule{0, INT32_MAX}, 0);
   c.beta = sec.real("beta", positive(""), 1.0);
   c.added_mass = sec.real("added_mass", non_negative(""), 0.0);

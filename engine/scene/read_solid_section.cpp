@@ -7,8 +7,8 @@ namespace rift {
 namespace {
 
 // SolidBoundarySpec::Kind order.
-constexpr std::array<std::string_view, 5> kBoundaryTypes{"fixed", "velocity", "traction", "pressure",
-                                                         "in_situ"};
+constexpr std::array<std::string_view, 6> kBoundaryTypes{"fixed",    "velocity", "traction",
+                                                         "pressure", "in_situ",  "fluid_pressure"};
 constexpr std::array<std::string_view, 3> kComponents{"x", "y", "z"};
 
 MaterialSpec read_material(MapReader& m) {
@@ -70,6 +70,8 @@ SolidBoundarySpec read_boundary(MapReader& b) {
     b.error("type", "fixed or velocity for a node set (box_min/box_max): loads need surface faces");
   if (bc.kind == Kind::fixed) {
     b.forbid("value", for_type);
+  } else if (bc.kind == Kind::fluid_pressure) {
+    b.forbid("value", for_type + " (the fluid gives the pressure)");
   } else if (bc.kind == Kind::pressure) {
     bc.function = b.time_function("value", "Pa", std::nullopt);
   } else if (bc.kind == Kind::in_situ) {

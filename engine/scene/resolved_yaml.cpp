@@ -200,7 +200,8 @@ void emit_initial_stress(Lines& o, const InitialStressSpec& s) {
 // Only the keys that apply to the boundary's type, as the reader forbids the others.
 void emit_boundary(Lines& o, const SolidBoundarySpec& b) {
   using Kind = SolidBoundarySpec::Kind;
-  static constexpr const char* kTypes[] = {"fixed", "velocity", "traction", "pressure", "in_situ"};
+  static constexpr const char* kTypes[] = {"fixed",    "velocity", "traction",
+                                           "pressure", "in_situ",  "fluid_pressure"};
   if (b.box_min) {
     o.item(2, "box_min", vec3(*b.box_min));
     o.line(3, "box_max", vec3(*b.box_max));
@@ -215,7 +216,7 @@ void emit_boundary(Lines& o, const SolidBoundarySpec& b) {
     o.line(3, "components", "[" + comps + "]");
   }
   if (b.kind == Kind::velocity || b.kind == Kind::traction) o.line(3, "direction", vec3(b.direction));
-  if (b.kind != Kind::fixed) emit_time_function(o, 3, "value", b.function);
+  if (b.kind != Kind::fixed && b.kind != Kind::fluid_pressure) emit_time_function(o, 3, "value", b.function);
 }
 
 void emit_solid(Lines& o, const SolidSpec& s) {
@@ -289,6 +290,7 @@ void emit_output(Lines& o, const OutputSpec& out) {
 
 void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(0, "fluid_solid");
+  o.line(1, "force", c.force == FluidSolidSpec::Force::volume ? "volume" : "wetted_faces");
   o.line(1, "substeps", std::to_string(c.substeps));
   o.line(1, "beta", yaml_real(c.beta));
   o.line(1, "added_mass", yaml_real(c.added_mass));

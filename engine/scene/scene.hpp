@@ -135,7 +135,9 @@ struct InitialStressSpec {
 
 struct SolidBoundarySpec {
   // in_situ: the traction initial_stress . n on the surface (outward n), scaled by `function`.
-  enum class Kind { fixed, velocity, traction, pressure, in_situ };
+  // fluid_pressure (only with a fluid): the fluid's pressure sampled at each face's centroid, once per fluid
+  // step (systems/coupling): a wetted surface such as a notch the fluid fills.
+  enum class Kind { fixed, velocity, traction, pressure, in_situ, fluid_pressure };
   Kind kind = Kind::fixed;
   std::string surface;  // mesh surface name ("" when a node box is used)
   // fixed / velocity only, instead of a surface: the node set of all solid nodes whose reference
@@ -219,6 +221,12 @@ struct FluidSpec {
 // The two-way fluid-solid coupling (systems/coupling, docs/coupling.md): the solid immersed in the fluid
 // mesh as a volume fraction. Present exactly when the scene has both a solid and a fluid.
 struct FluidSolidSpec {
+  // How the fluid pushes on the solid. volume: the force over the solid's volume (absorption reaction,
+  // displaced fluid's momentum change, buoyancy). wetted_faces: only the fluid's pressure on the solid's
+  // boundaries of type fluid_pressure (a notch the fluid fills), as the paper's fracture coupling does; the
+  // absorption still makes the flow follow the solid. Not both: the pressure would count twice.
+  enum class Force { volume, wetted_faces };
+  Force force = Force::volume;
   int64_t substeps = 0;  // solid steps per fluid step; 0: the fewest with dt_s <= time.safety x stable step
   double beta = 1.0;     // absorption weight: sigma = beta rho_f alpha_s / fluid.dt
   // c_a: virtual mass c_a rho_f V added to the solid's nodes (V: their share of the solid inside the fluid at

@@ -44,6 +44,7 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
   pairs_.solid_velocity.resize(3 * ns);
   pairs_.fluid_velocity.resize(3 * nf);
   pairs_.first.resize(nf + 1);
+  pairs_.pair_weight.resize(nf);
 }
 
 Access SolidToFluidSystem::access() const {
@@ -95,7 +96,8 @@ void SolidToFluidSystem::exchange() {
                                         ft.span<double>("solid_volume"),
                                         ft.span<double>("solid_fraction"),
                                         ft.span<double>("solid_velocity"),
-                                        ft.span<double>("absorption")};
+                                        ft.span<double>("absorption"),
+                                        pairs_.pair_weight};
   const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
   parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
     kernels::solid_to_fluid_cells(cells, b, e);
@@ -133,6 +135,12 @@ Access FluidToSolidSystem::access() const {
            {col(solid::node_table, "fluid_force"), col(S, "exchanges"), col(S, "penalty_scale"),
             col(S, "force"), col(S, "penalty"), col(S, "absorption"), col(S, "previous_force"),
             col(S, "previous_change"), col(S, "growing")}};
+  if (!pairs_.wet_faces.empty()) {
+    a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
+    a.reads.push_back(col(solid::node_table, "x"));
+    a.reads.push_back(col(solid::face_table, "nodes"));
+    a.writes.push_back(col(solid::face_table, "fluid_pressure"));
+  }
   if (settings_.added_mass > 0.0) {
     a.reads.push_back(col(solid::node_table, "v"));
     a.reads.push_back(col(solid::node_table, "fluid_added_mass"));
@@ -165,12 +173,18 @@ void FluidToSolidSystem::exchange(bool initial) {
   args.fluid_velocity = pairs_.fluid_velocity;
   args.fluid_velocity_old = ft.span<double>("velocity_before");
   args.target = ft.span<double>("solid_velocity");
+  args.pair_weight = pairs_.pair_weight;
   args.penalty = {pairs_.penalty.data(), 3 * np};
   args.force = {pairs_.force.data(), 3 * np};
   parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::fluid_to_solid_pairs(args, b, e); });
-  kernels::gather_solid_node_forces(list, args.force, store_.table(solid::tet_table).span<int32_t>("nodes"),
-                                    store_.table(solid::node_table).span<double>("fluid_force"));
+  auto node_force = store_.table(solid::node_table).span<double>("fluid_force");
+  if (settings_.volume_force)
+    kernels::gather_solid_node_forces(list, args.force, store_.table(solid::tet_table).span<int32_t>("nodes"),
+                                      node_force);
+  else
+    std::fill(node_force.begin(), node_force.end(), 0.0);  // the wetted faces carry the fluid's push
   if (settings_.added_mass > 0.0) add_virtual_mass_force();
+  if (!pairs_.wet_faces.empty()) sample_wetted_faces();
 
   // Totals, in a fixed order. The fluid's own absorption force, sigma_K |K| (ubar_K - u_s,K), is summed
   // independently of the pairs: with the penalty total it checks Newton's third law.
@@ -188,6 +202,7 @@ void FluidToSolidSystem::exchange(bool initial) {
     if (sigma[k] != 0.0)
       for (int d = 0; d < 3; ++d)
         absorption[d] += sigma[k] * fluid_volume_[k] * (pairs_.fluid_velocity[3 * k + d] - target[3 * k + d]);
+  if (!settings_.volume_force) wetted_face_total(force);
   watch_oscillation(force);
   state.span<double>("exchanges")[0] += 1.0;
   state.span<double>("penalty_scale")[0] = scale;
@@ -248,6 +263,59 @@ void FluidToSolidSystem::watch_oscillation(const double force[3]) {
   for (int d = 0; d < 3; ++d) {
     change[d] = delta[d];
     previous[d] = force[d];
+  }
+}
+
+void FluidToSolidSystem::set_wetted_faces(std::vector<int32_t> faces) {
+  store_.table(solid::face_table).add<double>("fluid_pressure", 1);
+  const size_t n = faces.size();
+  pairs_.wet_faces = std::move(faces);
+  pairs_.wet_points.resize(3 * n);
+  pairs_.wet_pressure.resize(n);
+}
+
+// The fluid's pressure at each wetted face's current centroid, held over the next window like the force.
+void FluidToSolidSystem::sample_wetted_faces() {
+  const auto x = store_.table(solid::node_table).span<double>("x");
+  Table& faces = store_.table(solid::face_table);
+  const auto face_nodes = faces.span<int32_t>("nodes");
+  auto& pts = pairs_.wet_points;
+  for (size_t k = 0; k < pairs_.wet_faces.size(); ++k) {
+    const size_t f = static_cast<size_t>(pairs_.wet_faces[k]);
+    for (int d = 0; d < 3; ++d) {
+      double c = 0.0;
+      for (int a = 0; a < 3; ++a) c += x[3 * static_cast<size_t>(face_nodes[3 * f + a]) + d];
+      pts[3 * k + d] = c / 3.0;
+    }
+  }
+  kernels::coupling_broad_phase({pts, pts, pairs_.fluid_lo, pairs_.fluid_hi, 0.0}, pairs_.wet_broad);
+  const Table& ft = store_.table(fluid::tet_table);
+  pairs_.wet_outside = kernels::interpolate_p1_at_points(
+      store_.table(fluid::node_table).span<double>("x"), ft.span<int32_t>("nodes"),
+      store_.table(fluid::node_table).span<double>("pressure"), pts, pairs_.wet_broad.pairs,
+      pairs_.wet_pressure);
+  auto p = faces.span<double>("fluid_pressure");
+  for (size_t k = 0; k < pairs_.wet_faces.size(); ++k)
+    p[static_cast<size_t>(pairs_.wet_faces[k])] = pairs_.wet_pressure[k];
+}
+
+// The wetted faces' total push, sum_f -p_f n_f A_f (n_f A_f: half the cross product of the face's edges,
+// pointing out of the solid), in face order.
+void FluidToSolidSystem::wetted_face_total(double force[3]) const {
+  const auto x = store_.table(solid::node_table).span<double>("x");
+  const Table& faces = store_.table(solid::face_table);
+  const auto nodes = faces.span<int32_t>("nodes");
+  for (int d = 0; d < 3; ++d) force[d] = 0.0;
+  for (size_t k = 0; k < pairs_.wet_faces.size(); ++k) {
+    const size_t f = static_cast<size_t>(pairs_.wet_faces[k]);
+    const double* p0 = &x[3 * static_cast<size_t>(nodes[3 * f])];
+    const double* p1 = &x[3 * static_cast<size_t>(nodes[3 * f + 1])];
+    const double* p2 = &x[3 * static_cast<size_t>(nodes[3 * f + 2])];
+    const double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+    const double b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    const double na[3] = {0.5 * (a[1] * b[2] - a[2] * b[1]), 0.5 * (a[2] * b[0] - a[0] * b[2]),
+                          0.5 * (a[0] * b[1] - a[1] * b[0])};
+    for (int d = 0; d < 3; ++d) force[d] -= pairs_.wet_pressure[k] * na[d];
   }
 }
 

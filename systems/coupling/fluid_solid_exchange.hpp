@@ -18,12 +18,13 @@
 namespace rift {
 
 struct ExchangeSettings {
-  int64_t substeps = 1;                   // solid steps per fluid step
-  double beta = 1.0;                      // absorption weight
-  double rho = 0.0;                       // fluid density [kg/m^3]
-  double dt = 0.0;                        // fluid step [s]
-  std::array<double, 3> body_force{};     // fluid body force [N/m^3]
-  double added_mass = 0.0;                // c_a (FluidSolidSpec::added_mass)
+  int64_t substeps = 1;                // solid steps per fluid step
+  double beta = 1.0;                   // absorption weight
+  double rho = 0.0;                    // fluid density [kg/m^3]
+  double dt = 0.0;                     // fluid step [s]
+  std::array<double, 3> body_force{};  // fluid body force [N/m^3]
+  double added_mass = 0.0;             // c_a (FluidSolidSpec::added_mass)
+  bool volume_force = true;            // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
 };
 
@@ -34,8 +35,15 @@ struct ExchangePairs {
   std::vector<double> fluid_lo, fluid_hi, solid_lo, solid_hi;
   std::vector<double> volume, penalty, force;  // 1, 3, 3 per pair
   std::vector<int64_t> first;                  // per fluid tet + 1
+  std::vector<double> pair_weight;             // per fluid tet (kernels::SolidToFluidArgs::pair_weight)
   std::vector<double> solid_velocity;          // mean velocity per solid tet
   std::vector<double> fluid_velocity;          // mean velocity per fluid tet after the step
+  // Wetted faces (solid boundaries of type fluid_pressure): rows of solid_load_face, their centroids (also
+  // their zero-size boxes), the candidate fluid tets of each centroid, the sampled pressures.
+  std::vector<int32_t> wet_faces;
+  std::vector<double> wet_points, wet_pressure;
+  kernels::CouplingBroadPhaseWorkspace wet_broad;
+  size_t wet_outside = 0;  // centroids outside the fluid mesh at the last exchange (they get 0)
 };
 
 class SolidToFluidSystem : public System {
@@ -71,8 +79,13 @@ class FluidToSolidSystem : public System {
   // The virtual added mass per solid node from the current pairs, c_a rho_f (share of V_KS): into
   // solid_node.fluid_added_mass, which it creates, with solid_node.window_velocity = v.
   void set_added_mass();
+  // The faces whose fluid pressure is sampled at each exchange (solid_load_face rows); creates
+  // solid_load_face.fluid_pressure.
+  void set_wetted_faces(std::vector<int32_t> faces);
 
  private:
+  void sample_wetted_faces();
+  void wetted_face_total(double force[3]) const;
   void add_virtual_mass_force();
   void watch_oscillation(const double force[3]);
 

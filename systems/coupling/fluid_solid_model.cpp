@@ -25,6 +25,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.dt = fluid.spec().dt;
   settings_.body_force = fluid.spec().body_force;
   settings_.added_mass = spec.added_mass;
+  settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
   Table& state = store_.add_table(coupling::state_table);
   for (const char* c : {"exchanges", "pairs", "cut_cells", "solid_volume", "penalty_scale"})
@@ -40,6 +41,13 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   for (double v : store_.table(solid::tet_table).span<double>("volume0")) solid_volume_ += v;
   // The exchange at t = 0: the fluid's first step sees the solid, and the first window already feels the
   // fluid's body force (buoyancy); the absorption's reaction follows from the first fluid step on.
+  std::vector<int32_t> wetted;
+  const auto& loads = solid.load_conditions();
+  const auto face_load = store_.table(solid::face_table).span<int32_t>("load");
+  for (size_t f = 0; f < face_load.size(); ++f)
+    if (loads[static_cast<size_t>(face_load[f])].kind == SolidBoundarySpec::Kind::fluid_pressure)
+      wetted.push_back(static_cast<int32_t>(f));
+  if (!wetted.empty()) to_solid_->set_wetted_faces(std::move(wetted));
   to_fluid_->exchange();
   if (spec.added_mass > 0.0) {
     to_solid_->set_added_mass();
@@ -137,6 +145,9 @@ void FluidSolidModel::summarize(nlohmann::json& summary) const {
   s["substeps"] = settings_.substeps;
   s["beta"] = settings_.beta;
   s["added_mass"] = settings_.added_mass;
+  s["force_model"] = settings_.volume_force ? "volume" : "wetted_faces";
+  s["wetted_faces"] = pairs_.wet_faces.size();
+  s["wetted_faces_outside_fluid"] = pairs_.wet_outside;
   s["exchanges"] = static_cast<int64_t>(state.span<double>("exchanges")[0]);
   s["pairs"] = static_cast<int64_t>(state.span<double>("pairs")[0]);
   s["cut_cells"] = static_cast<int64_t>(state.span<double>("cut_cells")[0]);

@@ -186,15 +186,19 @@ TEST(FluidSolidExchange, ARigidTranslationIsTheTargetVelocityEverywhereInTheSoli
 
 // --- runs of the immersed block ---
 
+RunOptions quiet() {
+  RunOptions o;
+  o.progress = false;
+  o.write_output = false;
+  return o;
+}
+
 Scene block_scene(std::vector<std::string> overrides = {}) {
   return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/immersed_block.yaml", overrides);
 }
 
 TEST(FluidSolidRun, ANeutrallyBuoyantBlockStaysAtRest) {
-  RunOptions o;
-  o.progress = false;
-  o.write_output = false;
-  Simulation sim(block_scene(), o);
+  Simulation sim(block_scene(), quiet());
   while (sim.step() < sim.total_steps()) sim.step_once();
   const Store& store = sim.world().store;
   const auto force = store.table(coupling::state_table).span<double>("force");
@@ -237,7 +241,7 @@ TEST(FluidSolidRun, ARestartFromMidWindowContinuesBitForBit) {
 
 TEST(FluidSolidRun, TooFewSubstepsAreRefusedWithTheNumberNeeded) {
   try {
-    Simulation sim(block_scene({"fluid_solid.substeps=1"}), RunOptions{.write_output = false});
+    Simulation sim(block_scene({"fluid_solid.substeps=1"}), quiet());
     FAIL() << "expected an error";
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -247,7 +251,7 @@ TEST(FluidSolidRun, TooFewSubstepsAreRefusedWithTheNumberNeeded) {
 }
 
 TEST(FluidSolidRun, AnEndTimeOffTheFluidStepIsRefused) {
-  EXPECT_THROW(Simulation(block_scene({"time.end=0.0123"}), RunOptions{.write_output = false}), Error);
+  EXPECT_THROW(Simulation(block_scene({"time.end=0.0123"}), quiet()), Error);
 }
 
 }  // namespace
@@ -272,10 +276,7 @@ TEST(FluidSolidRun, WettedFacesCarryTheFluidsPressure) {
       "start_time: 0, rate: 5.0e6}}}",
       "solid.boundaries=[{surface: zmin, type: fluid_pressure}, {surface: zmax, type: "
       "fluid_pressure}]"};
-  RunOptions o;
-  o.progress = false;
-  o.write_output = false;
-  Simulation sim(block_scene(wet), o);
+  Simulation sim(block_scene(wet), quiet());
   while (sim.step() < sim.total_steps()) sim.step_once();
   const Store& store = sim.world().store;
   const Table& faces = store.table(solid::face_table);

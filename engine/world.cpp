@@ -19,7 +19,6 @@
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/mesh_conversion_model.hpp"
 #include "systems/solid_model.hpp"
-#include "systems/solid_tables.hpp"
 
 namespace rift {
 
@@ -78,8 +77,8 @@ void add_coupled_fluid(World& world, const Scene& scene) {
   if (spec.substeps > 0 && fluid.dt / static_cast<double>(substeps) > stable && !scene.time.allow_unstable_dt)
     throw Error(fmt::format(
         "fluid_solid.substeps = {} makes the solid step fluid.dt / substeps = {:.6g} s, above the solid's "
-        "stable "
-        "step {:.6g} s. Use fluid_solid.substeps >= {} ({} at time.safety = {}), or 0 to choose it, or set "
+        "stable step {:.6g} s. Use fluid_solid.substeps >= {} ({} at time.safety = {}), or 0 to choose it, "
+        "or set "
         "time.allow_unstable_dt: true to run it on purpose.",
         substeps, fluid.dt / static_cast<double>(substeps), stable,
         static_cast<int64_t>(std::ceil(fluid.dt / stable)), automatic, scene.time.safety));
@@ -93,7 +92,6 @@ void add_coupled_fluid(World& world, const Scene& scene) {
                fluid.dt / static_cast<double>(substeps), fluid.dt, spec.substeps > 0 ? "" : " (automatic)");
   world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh));
   order_along_curve(*world.fluid_mesh);
-  using solid::col;
   const char* F = fluid::tet_table;
   auto model = std::make_unique<FluidModel>(
       world.store, *world.fluid_mesh, fluid, substeps,

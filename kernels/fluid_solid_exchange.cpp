@@ -79,14 +79,16 @@ void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end) {
   }
 }
 
-void gather_solid_node_forces(std::span<const CouplingPair> pairs, std::span<const double> pair_force,
-                              std::span<const int32_t> solid_tet_nodes, std::span<double> node_force) {
-  std::fill(node_force.begin(), node_force.end(), 0.0);
+void gather_to_solid_nodes(std::span<const CouplingPair> pairs, std::span<const double> pair_value,
+                           int components, std::span<const int32_t> solid_tet_nodes,
+                           std::span<double> node_value) {
+  const size_t m = static_cast<size_t>(components);
+  std::fill(node_value.begin(), node_value.end(), 0.0);
   for (size_t p = 0; p < pairs.size(); ++p) {
     const size_t s = static_cast<size_t>(pairs[p].solid);
     for (int c = 0; c < 4; ++c) {
       const size_t n = static_cast<size_t>(solid_tet_nodes[4 * s + c]);
-      for (int d = 0; d < 3; ++d) node_force[3 * n + d] += 0.25 * pair_force[3 * p + d];
+      for (size_t d = 0; d < m; ++d) node_value[m * n + d] += 0.25 * pair_value[m * p + d];
     }
   }
 }

@@ -84,10 +84,12 @@ struct FluidToSolidArgs {
 // Pairs [begin, end).
 void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end);
 
-// node_force (3 per solid node) = sum over pairs, in pair order, of F_KS / 4 on each corner of S (lumped:
-// the consistent load of a uniform force density on a linear tet). Overwrites node_force.
-void gather_solid_node_forces(std::span<const CouplingPair> pairs, std::span<const double> pair_force,
-                              std::span<const int32_t> solid_tet_nodes, std::span<double> node_force);
+// node_value (`components` per solid node) = sum over pairs, in pair order, of a quarter of the pair's
+// value on each corner of S (lumped: the consistent load of a uniform density on a linear tet): the force
+// F_KS (3), or the virtual added mass (1). Overwrites node_value.
+void gather_to_solid_nodes(std::span<const CouplingPair> pairs, std::span<const double> pair_value,
+                           int components, std::span<const int32_t> solid_tet_nodes,
+                           std::span<double> node_value);
 
 // P1 interpolation of a nodal field at points (the fluid's pressure at the centroids of wetted solid faces).
 // candidates: pairs (point, fluid tet) whose boxes overlap, sorted by point: coupling_broad_phase with the

@@ -9,14 +9,9 @@ void surface_loads(std::span<const double> x, std::span<const int32_t> face_node
                    std::span<double> corner_force, size_t begin, size_t end,
                    std::span<const double> face_pressure) {
   for (size_t e = begin; e < end; ++e) {
-    const double* p0 = &x[3 * face_nodes[3 * e + 0]];
-    const double* p1 = &x[3 * face_nodes[3 * e + 1]];
-    const double* p2 = &x[3 * face_nodes[3 * e + 2]];
-    const double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-    const double b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-    // Half the cross product is the area vector n*A; a third of the load goes to each corner.
-    const double na[3] = {0.5 * (a[1] * b[2] - a[2] * b[1]), 0.5 * (a[2] * b[0] - a[0] * b[2]),
-                          0.5 * (a[0] * b[1] - a[1] * b[0])};
+    // The area vector n*A; a third of the load goes to each corner.
+    double na[3];
+    face_area_vector(x, face_nodes, e, na);
     const double area = std::sqrt(na[0] * na[0] + na[1] * na[1] + na[2] * na[2]);
     const FaceLoad& L = loads[face_load[e]];
     double f[3];

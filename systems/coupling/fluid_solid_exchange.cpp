@@ -6,6 +6,7 @@
 #include "engine/schedule/parallel.hpp"
 #include "kernels/contact_broad_phase.hpp"
 #include "kernels/fluid_solid_exchange.hpp"
+#include "kernels/surface_load.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/solid_tables.hpp"
@@ -64,11 +65,12 @@ void SolidToFluidSystem::run(const StepContext& ctx) {
 void SolidToFluidSystem::exchange() {
   const Table& nodes = store_.table(solid::node_table);
   const auto x = nodes.span<double>("x");
+  const auto v = nodes.span<double>("v");
   const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
   const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
   parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
-    kernels::tet_mean_vectors(nodes.span<double>("v"), solid_tets, pairs_.solid_velocity, b, e);
+    kernels::tet_mean_vectors(v, solid_tets, pairs_.solid_velocity, b, e);
   });
   kernels::coupling_broad_phase({pairs_.fluid_lo, pairs_.fluid_hi, pairs_.solid_lo, pairs_.solid_hi, 0.0},
                                 pairs_.broad);
@@ -179,8 +181,8 @@ void FluidToSolidSystem::exchange(bool initial) {
   parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::fluid_to_solid_pairs(args, b, e); });
   auto node_force = store_.table(solid::node_table).span<double>("fluid_force");
   if (settings_.volume_force)
-    kernels::gather_solid_node_forces(list, args.force, store_.table(solid::tet_table).span<int32_t>("nodes"),
-                                      node_force);
+    kernels::gather_to_solid_nodes(list, args.force, 3, store_.table(solid::tet_table).span<int32_t>("nodes"),
+                                   node_force);
   else
     std::fill(node_force.begin(), node_force.end(), 0.0);  // the wetted faces carry the fluid's push
   if (settings_.added_mass > 0.0) add_virtual_mass_force();
@@ -217,13 +219,12 @@ void FluidToSolidSystem::set_added_mass() {
   Table& nodes = store_.table(solid::node_table);
   nodes.add<double>("fluid_added_mass", 1);
   nodes.add<double>("window_velocity", 3);
-  auto extra = nodes.span<double>("fluid_added_mass");
-  const auto conn = store_.table(solid::tet_table).span<int32_t>("nodes");
   const auto& list = pairs_.broad.pairs;
-  for (size_t p = 0; p < list.size(); ++p)  // pair order: deterministic
-    for (int c = 0; c < 4; ++c)
-      extra[static_cast<size_t>(conn[4 * static_cast<size_t>(list[p].solid) + c])] +=
-          0.25 * settings_.added_mass * settings_.rho * pairs_.volume[p];
+  std::vector<double> pair_mass(list.size());  // once, at set-up
+  for (size_t p = 0; p < list.size(); ++p)
+    pair_mass[p] = settings_.added_mass * settings_.rho * pairs_.volume[p];
+  kernels::gather_to_solid_nodes(list, pair_mass, 1, store_.table(solid::tet_table).span<int32_t>("nodes"),
+                                 nodes.span<double>("fluid_added_mass"));
   const auto v = nodes.span<double>("v");
   std::copy(v.begin(), v.end(), nodes.span<double>("window_velocity").begin());
 }
@@ -299,22 +300,15 @@ void FluidToSolidSystem::sample_wetted_faces() {
     p[static_cast<size_t>(pairs_.wet_faces[k])] = pairs_.wet_pressure[k];
 }
 
-// The wetted faces' total push, sum_f -p_f n_f A_f (n_f A_f: half the cross product of the face's edges,
-// pointing out of the solid), in face order.
+// The wetted faces' total push, sum_f -p_f n_f A_f (kernels::face_area_vector), in face order.
 void FluidToSolidSystem::wetted_face_total(double force[3]) const {
   const auto x = store_.table(solid::node_table).span<double>("x");
   const Table& faces = store_.table(solid::face_table);
   const auto nodes = faces.span<int32_t>("nodes");
   for (int d = 0; d < 3; ++d) force[d] = 0.0;
   for (size_t k = 0; k < pairs_.wet_faces.size(); ++k) {
-    const size_t f = static_cast<size_t>(pairs_.wet_faces[k]);
-    const double* p0 = &x[3 * static_cast<size_t>(nodes[3 * f])];
-    const double* p1 = &x[3 * static_cast<size_t>(nodes[3 * f + 1])];
-    const double* p2 = &x[3 * static_cast<size_t>(nodes[3 * f + 2])];
-    const double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-    const double b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-    const double na[3] = {0.5 * (a[1] * b[2] - a[2] * b[1]), 0.5 * (a[2] * b[0] - a[0] * b[2]),
-                          0.5 * (a[0] * b[1] - a[1] * b[0])};
+    double na[3];
+    kernels::face_area_vector(x, nodes, static_cast<size_t>(pairs_.wet_faces[k]), na);
     for (int d = 0; d < 3; ++d) force[d] -= pairs_.wet_pressure[k] * na[d];
   }
 }

@@ -93,7 +93,8 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
         t_fluid, force[0], force[1], force[2], mass / (settings_.rho * solid_volume_), settings_.rho);
   }
   // Newton's third law: the solid's penalty force is minus what the fluid's absorption felt, exactly but
-  // for round-off (kernels/fluid_solid_exchange.hpp). A gap means overlapping solid tets (alpha clamped).
+  // for round-off (kernels/fluid_solid_exchange.hpp), also where solid tets overlap (the pair weights).
+  // A gap means the absorption the fluid stepped with is not the one the pairs were weighted for.
   const double scale = state.span<double>("penalty_scale")[0];  // sum of |pair penalty|: the round-off scale
   double gap = 0.0;
   for (int d = 0; d < 3; ++d) gap = std::max(gap, std::abs(penalty[d] - absorption[d]));
@@ -102,9 +103,10 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
         "the fluid's absorption force ({:.6g}, {:.6g}, {:.6g}) N and the solid's penalty force ({:.6g}, "
         "{:.6g}, "
         "{:.6g}) N differ by {:.3g} N after the fluid step ending at t = {:.6g} s: momentum is not exchanged "
-        "equal and opposite. Likely cause: solid tets that overlap (the volume fraction is clamped to 1 "
-        "where they do), e.g. pieces pushed into each other. What to change: enable solid.contact so pieces "
-        "cannot interpenetrate, or lower fluid.dt.",
+        "equal and opposite. Likely cause: the absorption the fluid stepped with differs from the one the "
+        "exchange weighted its pairs for (an internal inconsistency of the coupling, not of the scene). What "
+        "to "
+        "change: nothing in the scene fixes it; report it with the scene and the step.",
         absorption[0], absorption[1], absorption[2], penalty[0], penalty[1], penalty[2], gap, t_fluid);
   return std::nullopt;
 }

@@ -37,7 +37,10 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   node_volume_.assign(nn, 0.0);
   for (size_t t = 0; t < nt; ++t)
     for (int a = 0; a < 4; ++a) node_volume_[tet_nodes_[4 * t + a]] += 0.25 * volume_[t];
-  for (double v : node_volume_) residual_area_ += std::cbrt(v) * std::cbrt(v) * std::cbrt(v) * std::cbrt(v);
+  for (double v : node_volume_) {
+    const double c = std::cbrt(v);
+    residual_area_ += c * c * c * c;  // V^(4/3)
+  }
   residual_area_ = std::sqrt(residual_area_);
 
   // Boundary conditions, in list order (a later Dirichlet boundary overrides an earlier one on shared
@@ -377,6 +380,16 @@ FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std:
   return st;
 }
 
+// max|u|, but at least the speed sqrt(pressure range / rho) the pressure differences could drive: in a fluid
+// at rest (hydrostatic, or around a solid at rest) u is round-off, and a change relative to it alone never
+// falls below a tolerance.
+double FluidSolver::velocity_scale() const {
+  const double umax = max_abs(u_);
+  if (p_.empty()) return umax;
+  const auto [pmin, pmax] = std::minmax_element(p_.begin(), p_.end());
+  return std::max(umax, std::sqrt((*pmax - *pmin) / settings_.rho));
+}
+
 FluidStepReport FluidSolver::step() {
   const FluidSettings& s = settings_;
   const size_t nn = node_count(), nt = volume_.size();
@@ -384,12 +397,7 @@ FluidStepReport FluidSolver::step() {
   FluidStepReport rep;
   schur_reference_ = 0.0;
   apply_velocity_bc(t_new);
-  {
-    const auto [pmin, pmax] = std::minmax_element(p_.begin(), p_.end());
-    const double u_scale =
-        std::max(max_abs(u_), nn > 0 ? std::sqrt(std::max(*pmax - *pmin, 0.0) / s.rho) : 0.0);
-    schur_floor_ = 1e-12 * u_scale * residual_area_;
-  }
+  schur_floor_ = 1e-12 * velocity_scale() * residual_area_;
   if (s.picard_extrapolate && have_previous_) {
     // u_old_ still holds u^{n-1}: first iterate 2 u^n - u^{n-1}, boundary values at t^{n+1}.
     for (size_t i = 0; i < 3 * nn; ++i) {
@@ -524,12 +532,7 @@ FluidStepReport FluidSolver::step() {
     for (size_t i = 0; i < 3 * nn; ++i) du = std::max(du, std::abs(u_[i] - u_iter_[i]));
     for (size_t n = 0; n < nn; ++n) dp = std::max(dp, std::abs(p_[n] - p_iter_[n]));
     const double umax = max_abs(u_);
-    // The velocity scale is at least the speed sqrt(dp_range / rho) the pressure differences could drive:
-    // in a fluid at rest (hydrostatic, or around a solid at rest) u is round-off, and a change relative to
-    // it alone never falls below the tolerance.
-    const auto [pmin, pmax] = std::minmax_element(p_.begin(), p_.end());
-    const double u_scale = std::max(umax, nn > 0 ? std::sqrt((*pmax - *pmin) / s.rho) : 0.0);
-    rep.velocity_change = du / std::max(u_scale, 1e-300);
+    rep.velocity_change = du / std::max(velocity_scale(), 1e-300);
     rep.pressure_change = dp / std::max({max_abs(p_), s.rho * umax * umax, 1e-300});
     rep.picard_iterations = k + 1;
     if (s.verbose)

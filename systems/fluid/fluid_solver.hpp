@@ -162,6 +162,7 @@ class FluidSolver {
   SchurStats schur_solve(std::span<const double> b, std::span<double> delta);
   void apply_velocity_bc(double t);
   void assemble_pressure_matrix();
+  double velocity_scale() const;  // for the Picard test and the Schur floor
   void update_cell_coefficients();
 
   FluidSettings settings_;

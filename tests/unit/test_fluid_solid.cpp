@@ -161,7 +161,7 @@ TEST(FluidSolidExchange, AFluidAtRestGivesArchimedesForce) {
   a.target = e.target, a.pair_weight = e.weight, a.penalty = penalty, a.force = force;
   fluid_to_solid_pairs(a, 0, np);
   std::vector<double> node_force(e.solid.x.size(), 1.0);  // overwritten
-  gather_solid_node_forces(e.ws.pairs, force, e.solid.tets, node_force);
+  gather_to_solid_nodes(e.ws.pairs, force, 3, e.solid.tets, node_force);
   double total[3] = {0, 0, 0};
   for (size_t n = 0; n < node_force.size() / 3; ++n)
     for (int d = 0; d < 3; ++d) total[d] += node_force[3 * n + d];

@@ -245,12 +245,17 @@ bool face_separated(const TetGeometry& P, const TetGeometry& Q) {
 }  // namespace
 
 TetPairForce tet_pair_potential_force(const double a[4][3], const double b[4][3], double penalty) {
+  return tet_pair_potential_force(a, b, penalty, penalty);
+}
+
+TetPairForce tet_pair_potential_force(const double a[4][3], const double b[4][3], double penalty_a,
+                                      double penalty_b) {
   TetPairForce out{};
   const TetGeometry A = tet_geometry(a), B = tet_geometry(b);
   if (!A.ok || !B.ok || !boxes_overlap(A, B) || face_separated(A, B) || face_separated(B, A)) return out;
   double fa[4][3] = {}, fb[4][3] = {};
-  one_way(A, B, penalty, fa, fb, out);
-  one_way(B, A, penalty, fb, fa, out);
+  one_way(A, B, penalty_b, fa, fb, out);  // A's faces in B's potential: B's penalty
+  one_way(B, A, penalty_a, fb, fa, out);
   for (int c = 0; c < 4; ++c)
     for (int d = 0; d < 3; ++d) {
       out.f[c][d] = fa[c][d];
@@ -315,7 +320,10 @@ ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) 
         xa[c][d] = args.x[3 * static_cast<size_t>(na[c]) + d];
         xb[c][d] = args.x[3 * static_cast<size_t>(nb[c]) + d];
       }
-    TetPairForce r = tet_pair_potential_force(xa, xb, law.penalty);
+    const bool per_tet = !args.tet_penalty.empty();
+    TetPairForce r =
+        tet_pair_potential_force(xa, xb, per_tet ? args.tet_penalty[static_cast<size_t>(pr.a)] : law.penalty,
+                                 per_tet ? args.tet_penalty[static_cast<size_t>(pr.b)] : law.penalty);
     double* out = &args.pair_force[24 * q];
     const double fn = std::sqrt(dot(r.normal, r.normal));
     double fric_diss = 0.0, damp_diss = 0.0;

@@ -84,6 +84,11 @@ struct TetPairForce {
 
 // a, b: the 4 corners of each tet (either orientation; degenerate tets give zero force). penalty: p.
 TetPairForce tet_pair_potential_force(const double a[4][3], const double b[4][3], double penalty);
+// Each tet with its own penalty: the way "a's faces in b's potential" is scaled by b's, the other by a's,
+// i.e. E = p_a ∫ phi_a + p_b ∫ phi_b over the overlap. Still exact force and moment balance, and
+// conservative for rigid motions as above (each term is).
+TetPairForce tet_pair_potential_force(const double a[4][3], const double b[4][3], double penalty_a,
+                                      double penalty_b);
 
 // phi of the tet at x: 4 min_j B_j(x), 0 outside (and for a degenerate tet).
 double tet_potential(const double tet[4][3], const double x[3]);
@@ -123,6 +128,7 @@ struct ContactArgs {
   std::span<double> damping_dissipation = {};   // this step's normal-damping dissipation [J]
   std::span<double> energy = {};                // overlap energy E of the potential [J]
   std::span<double> friction_energy = {};       // elastic energy in the friction spring |h|^2 / (2 k_t) [J]
+  std::span<const double> tet_penalty = {};     // p per tet [Pa]; empty: law.penalty for every tet
 };
 
 struct ContactStatus {

@@ -50,8 +50,9 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t a) {
 }  // namespace
 
 ContactSystem::ContactSystem(Store& store, const ContactSpec& spec, size_t input_vertex_count,
-                             std::span<const double> tet_density)
+                             std::span<const double> tet_density, std::vector<double> tet_penalty)
     : store_(store), input_vertex_count_(input_vertex_count) {
+  if (!spec.penalty) tet_penalty_ = std::move(tet_penalty);
   Table& nodes = store_.table(solid::node_table);
   nodes.add<double>("contact_force", 3);
   nodes.add<double>("x_detect", 3);
@@ -100,8 +101,14 @@ void ContactSystem::derive_constants(const ContactSpec& spec, std::span<const do
   }
   const double n = static_cast<double>(std::max<size_t>(tets.size(), 1));
   const double v = sum_v / n, a = sum_a / n, l = sum_l / (6.0 * n), m = sum_m / n;
-  const double k_n = 8.0 * (*spec.penalty) * a * a / (3.0 * v);
-  law_.penalty = *spec.penalty;
+  // Per-tet penalties: the pair constants (k_t, damping) and the log use their mean.
+  double penalty = spec.penalty ? *spec.penalty : 0.0;
+  if (!tet_penalty_.empty()) {
+    for (double p : tet_penalty_) penalty += p;
+    penalty /= static_cast<double>(tet_penalty_.size());
+  }
+  const double k_n = 8.0 * penalty * a * a / (3.0 * v);
+  law_.penalty = penalty;
   law_.friction = spec.friction;
   law_.tangential_stiffness = spec.friction > 0 ? spec.tangential_penalty * law_.penalty * l : 0.0;
   law_.normal_damping = 2.0 * spec.damping * std::sqrt(k_n * 0.5 * m);
@@ -166,17 +173,18 @@ void ContactSystem::estimate_stable_step() {
   const auto x0 = nodes.span<const double>("x0");
   const auto mass = nodes.span<const double>("mass");
   const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
-  std::vector<double> stiffness(nodes.size(), 0.0);
-  auto add_face = [&](int32_t t, const int32_t corner[3]) {
+  std::vector<double> outer(nodes.size(), 0.0), joint(nodes.size(), 0.0);
+  auto add_face = [&](std::vector<double>& stiffness, int32_t t, const int32_t corner[3]) {
     Corners c;
     tet_corners(x0, conn, static_cast<size_t>(t), c);
     const double v = tet_volume(c);
     if (!(v > 0)) return;
     const double a = triangle_area(c[corner[0]], c[corner[1]], c[corner[2]]);
-    const double k = 8.0 * law_.penalty * a * a / (3.0 * v);
+    const double p = tet_penalty_.empty() ? law_.penalty : tet_penalty_[static_cast<size_t>(t)];
+    const double k = 8.0 * p * a * a / (3.0 * v);
     for (int i = 0; i < 3; ++i) stiffness[conn[4 * t + corner[i]]] += k / 3.0;
   };
-  for (const auto& [t, f] : boundary_faces_) add_face(t, kTetFaceCorners[f]);
+  for (const auto& [t, f] : boundary_faces_) add_face(outer, t, kTetFaceCorners[f]);
   if (store_.has(solid::joint_table)) {
     const Table& joints = store_.table(solid::joint_table);
     const auto jn = joints.span<const int32_t>("nodes");
@@ -188,13 +196,56 @@ void ContactSystem::estimate_stable_step() {
         for (int i = 0; i < 3; ++i)
           for (int k = 0; k < 4; ++k)
             if (conn[4 * t + k] == jn[6 * j + 3 * s + i]) corner[i] = k;
-        add_face(t, corner);
+        add_face(joint, t, corner);
       }
   }
-  stable_step_ = INFINITY;
-  for (size_t n = 0; n < nodes.size(); ++n)
-    if (stiffness[n] > 0 && mass[n] > 0)
-      stable_step_ = std::min(stable_step_, std::sqrt(2.0 * mass[n] / stiffness[n]));
+  auto step = [&](double k, size_t n) {
+    return k > 0 && mass[n] > 0 ? std::sqrt(2.0 * mass[n] / k) : INFINITY;
+  };
+  stable_step_ = joint_face_stable_step_ = outer_face_stable_step_ = INFINITY;
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    stable_step_ = std::min(stable_step_, step(outer[n] + joint[n], n));
+    joint_face_stable_step_ = std::min(joint_face_stable_step_, step(joint[n], n));
+    outer_face_stable_step_ = std::min(outer_face_stable_step_, step(outer[n], n));
+  }
+}
+
+std::vector<double> matched_contact_penalties(const Store& store, std::span<const double> joint_penalty) {
+  const auto x0 = store.table(solid::node_table).span<const double>("x0");
+  const auto conn = store.table(solid::tet_table).span<const int32_t>("nodes");
+  const Table& joints = store.table(solid::joint_table);
+  const auto jn = joints.span<const int32_t>("nodes");
+  const auto jt = joints.span<const int32_t>("tets");
+  const auto material = joints.span<const int32_t>("material");
+  std::vector<double> penalty(conn.size() / 4, INFINITY);
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const double* p[3] = {&x0[3 * jn[6 * j]], &x0[3 * jn[6 * j + 1]], &x0[3 * jn[6 * j + 2]]};
+    const double area = triangle_area(p[0], p[1], p[2]);
+    double h2 = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      const double* a = p[i];
+      const double* b = p[(i + 1) % 3];
+      h2 = std::min(
+          h2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    }
+    if (!(area > 0) || !(h2 > 0)) continue;
+    const double p_j = joint_penalty[static_cast<size_t>(material[j])];
+    for (int s = 0; s < 2; ++s) {
+      const auto t = static_cast<size_t>(jt[2 * j + s]);
+      Corners c;
+      tet_corners(x0, conn, t, c);
+      const double H = 3.0 * tet_volume(c) / area;
+      if (H > 0) penalty[t] = std::min(penalty[t], p_j * H / (8.0 * std::sqrt(h2)));
+    }
+  }
+  double sum = 0.0;
+  size_t count = 0;
+  for (double p : penalty)
+    if (std::isfinite(p)) sum += p, ++count;
+  const double mean = count ? sum / static_cast<double>(count) : 0.0;
+  for (double& p : penalty)
+    if (!std::isfinite(p)) p = mean;
+  return penalty;
 }
 
 Access ContactSystem::access() const {
@@ -379,6 +430,7 @@ void ContactSystem::compute_forces(const StepContext& ctx) {
   args.tet_nodes = conn;
   args.pairs = pairs;
   args.law = law_;
+  args.tet_penalty = tet_penalty_;
   args.dt = ctx.dt;
   args.history = table.span<double>("history");
   args.pair_force = table.span<double>("force");

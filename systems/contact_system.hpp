@@ -48,21 +48,35 @@ struct ContactTotals {
   int64_t detections = 0;
 };
 
+// Contact penalties matched to the joints, one per tet: a tet pressed face to face into another feels
+// 4 p_t / H per unit area from its side (H = 3 V / A over that face, header above), and its intact joint
+// was p_j / h (h: the face's shortest edge). p_t = min over the tet's joint faces of p_j H / (8 h) gives
+// each side half the joint's stiffness, so the pair is never stiffer than the joint it replaces: a joint
+// that breaks under compression hands its load to a spring no stiffer than itself, and the contact does
+// not shorten the step. Tets without a joint get the mean of the others. joint_penalty: p_j per joint
+// material [Pa]. Needs the solid's node, tet and joint tables (with joints).
+std::vector<double> matched_contact_penalties(const Store& store, std::span<const double> joint_penalty);
+
 class ContactSystem : public System {
  public:
   // Needs the solid's tables; adds solid_node.contact_force and x_detect, solid_contact_pair,
   // solid_contact_state and the contact columns of solid_energy.
-  // spec.penalty must be set (the solid resolves its default); tet_density: 1 per tet [kg/m^3].
+  // tet_density: 1 per tet [kg/m^3]. tet_penalty: 1 per tet [Pa] (matched_contact_penalties), used when
+  // spec.penalty is absent; empty: spec.penalty must be set (the solid resolves its default).
   ContactSystem(Store& store, const ContactSpec& spec, size_t input_vertex_count,
-                std::span<const double> tet_density);
+                std::span<const double> tet_density, std::vector<double> tet_penalty = {});
   ~ContactSystem() override;
   std::string name() const override { return "contact"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
 
   // Largest step the contact penalty is stable with (femdem.md 1d's estimate for a joint, here for two
-  // tets pressed face to face), minimum over tets [s].
+  // tets pressed face to face), minimum over tets [s]: over all faces that may touch, over the faces of
+  // joints only (whose contact replaces the joint's spring once it breaks), and over the outer faces of a
+  // mesh of several bodies only.
   double stable_step() const { return stable_step_; }
+  double joint_face_stable_step() const { return joint_face_stable_step_; }
+  double outer_face_stable_step() const { return outer_face_stable_step_; }
   const kernels::ContactLaw& law() const { return law_; }
   double buffer() const { return buffer_; }
   size_t bodies() const { return bodies_; }
@@ -82,7 +96,8 @@ class ContactSystem : public System {
   Store& store_;
   size_t input_vertex_count_;
   kernels::ContactLaw law_;
-  double buffer_ = 0.0, stable_step_ = 0.0;
+  std::vector<double> tet_penalty_;  // p per tet [Pa]; empty: law_.penalty for all
+  double buffer_ = 0.0, stable_step_ = 0.0, joint_face_stable_step_ = 0.0, outer_face_stable_step_ = 0.0;
   size_t bodies_ = 0;
   std::vector<int32_t> boundary_tets_;  // tets with a face on the outer boundary (candidates if bodies_ > 1)
   std::vector<std::pair<int32_t, int>> boundary_faces_;

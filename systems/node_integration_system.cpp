@@ -11,8 +11,12 @@ constexpr size_t grain = 4096;
 }
 
 NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoundarySpec> conditions,
-                                             std::array<double, 3> gravity, double mass_damping)
-    : store_(store), conditions_(std::move(conditions)), gravity_(gravity), mass_damping_(mass_damping) {
+                                             std::array<double, 3> gravity, TimeFunction mass_damping)
+    : store_(store),
+      conditions_(std::move(conditions)),
+      gravity_(gravity),
+      mass_damping_(std::move(mass_damping)),
+      damped_(mass_damping_.highest() > 0.0) {
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
   contact_ = store_.table(solid::node_table).has("contact_force");
@@ -40,7 +44,7 @@ Access NodeIntegrationSystem::access() const {
     writes.push_back(col(E, "contact_work"));
   }
   if (!external_column_.empty()) reads.push_back(col(N, external_column_.c_str()));
-  if (mass_damping_ > 0.0) writes.push_back(col(E, "damping"));
+  if (damped_) writes.push_back(col(E, "damping"));
   return {reads, writes};
 }
 
@@ -65,7 +69,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       nodes.span<int32_t>("held"),
       prescribed_,
       contact_ ? nodes.span<double>("contact_force") : std::span<double>{},
-      mass_damping_,
+      mass_damping_(ctx.time),
       external_column_.empty() ? std::span<const double>{} : nodes.span<double>(external_column_)};
   const Table& tets = store_.table(solid::tet_table);
   const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
@@ -90,7 +94,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   energy.span<double>("joint_work")[0] += total.work[1];
   energy.span<double>("external_work")[0] += total.work[2];
   if (contact_) energy.span<double>("contact_work")[0] += total.work[3];
-  if (mass_damping_ > 0.0) energy.span<double>("damping")[0] += total.damping;
+  if (damped_) energy.span<double>("damping")[0] += total.damping;
 }
 
 }  // namespace rift

@@ -15,9 +15,9 @@ namespace rift {
 class NodeIntegrationSystem : public System {
  public:
   // velocity_conditions[i] drives nodes whose `held` column is i (fixed supports are velocity 0).
-  // mass_damping: solid.mass_damping [1/s] (0: none).
+  // mass_damping: solid.mass_damping [1/s], evaluated at the start of each step (0: none).
   NodeIntegrationSystem(Store& store, std::vector<SolidBoundarySpec> velocity_conditions,
-                        std::array<double, 3> gravity, double mass_damping = 0.0);
+                        std::array<double, 3> gravity, TimeFunction mass_damping = {});
   std::string name() const override { return "node_integration"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
@@ -31,7 +31,8 @@ class NodeIntegrationSystem : public System {
   Store& store_;
   std::vector<SolidBoundarySpec> conditions_;
   std::array<double, 3> gravity_;
-  double mass_damping_;
+  TimeFunction mass_damping_;
+  bool damped_ = false;             // the damping is positive at some time: its dissipation is booked
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<kernels::NodeStepResult> blocks_;
   size_t non_finite_ = 0;

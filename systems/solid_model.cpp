@@ -63,9 +63,13 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
                                  3.0 / (joint_stable_dt_ * joint_stable_dt_));
   }
   if (contact_) {
-    // The contact springs act on face corners on top of everything else: their omega^2 adds.
-    const double dt_c = contact_->stable_step();
-    stable_dt_ = 1.0 / std::sqrt(1.0 / (stable_dt_ * stable_dt_) + 1.0 / (dt_c * dt_c));
+    // The contact springs act on face corners on top of the tets: their omega^2 adds. On a joint's face the
+    // contact replaces the joint's spring once it breaks, so there the larger of the two counts; on the
+    // outer faces of a mesh of several bodies the contact adds to everything.
+    const double inv_t = 1.0 / (tet_stable_dt_ * tet_stable_dt_);
+    const double inv_j = std::isfinite(joint_stable_dt_) ? 3.0 / (joint_stable_dt_ * joint_stable_dt_) : 0.0;
+    const double dt_cj = contact_->joint_face_stable_step(), dt_co = contact_->outer_face_stable_step();
+    stable_dt_ = 1.0 / std::sqrt(inv_t + std::max(inv_j, 1.0 / (dt_cj * dt_cj)) + 1.0 / (dt_co * dt_co));
   } else if (spec_.fracture) {
     spdlog::warn(
         "solid: a fracture zone without solid.contact: the faces of broken joints will pass "
@@ -192,7 +196,7 @@ void SolidModel::summarize(nlohmann::json& summary) const {
   s["broken_joints"] = broken_joint_count();
   s["loaded_faces"] = crack_face_begin_;
   s["crack_faces_pressed"] = loads_->pressed_crack_faces();
-  s["mass_damping"] = spec_.mass_damping;
+  s["mass_damping"] = spec_.mass_damping(0.0);  // at the start; a schedule is in the resolved scene
   s["stable_dt"] = stable_dt_;
   s["tet_stable_dt"] = tet_stable_dt_;
   s["joint_stable_dt"] =

@@ -228,19 +228,37 @@ void SolidModel::apply_initial_cracks(const std::vector<uint8_t>& zone) {
                spec_.fracture->initial_cracks.size());
 }
 
-// The contact penalty defaults to 10 x the stiffest material (femdem.md 1d: 10-100 E).
+// The contact penalty defaults, with joints, to one per tet matched to them (contact_system.hpp): a joint
+// broken under compression hands its load to a contact spring no stiffer than itself, and the contact does
+// not shorten the step. Without joints (separate bodies) it is 10 x the stiffest material (femdem.md 1d:
+// 10-100 E). A chosen penalty far stiffer than the matched ones gets a warning.
 void SolidModel::build_contact(const TetMesh& mesh) {
   ContactSpec contact = *spec_.contact;
-  if (!contact.penalty) {
+  std::vector<double> matched;
+  if (joint_count() > 0) {
+    std::vector<double> joint_penalty;
+    for (const auto& m : joint_materials_) joint_penalty.push_back(m.penalty);
+    matched = matched_contact_penalties(store_, joint_penalty);
+  }
+  double mean = 0.0;
+  for (double p : matched) mean += p / static_cast<double>(matched.size());
+  if (!contact.penalty && matched.empty()) {
     double young = 0.0;
     for (const auto& m : spec_.materials) young = std::max(young, m.young);
     contact.penalty = 10.0 * young;
+  } else if (contact.penalty && !matched.empty() && *contact.penalty > 2.0 * mean) {
+    spdlog::warn(
+        "solid.contact.penalty {:.4g} Pa is {:.1f} x the mean penalty matched to the joints ({:.4g} Pa): a "
+        "joint broken under compression hands its load to a much stiffer spring, which throws the faces "
+        "apart (the contact guard may stop the run) and shortens the step; leave the key out to use the "
+        "matched ones",
+        *contact.penalty, *contact.penalty / mean, mean);
   }
   const Table& tets = store_.table(solid::tet_table);
   const auto material = tets.span<const int32_t>("material");
   std::vector<double> density(tets.size());
   for (size_t e = 0; e < tets.size(); ++e) density[e] = spec_.materials[material[e]].density;
-  contact_ = std::make_unique<ContactSystem>(store_, contact, mesh.nodes.size(), density);
+  contact_ = std::make_unique<ContactSystem>(store_, contact, mesh.nodes.size(), density, std::move(matched));
 }
 
 }  // namespace rift

@@ -104,7 +104,11 @@ void check_unique_names(MapReader& solid, std::vector<MapReader>& readers,
 SolidSpec read_solid_section(MapReader& sec) {
   SolidSpec solid;
   solid.gravity = sec.vec3("gravity", any_real("m/s^2"), std::array<double, 3>{});
-  solid.mass_damping = sec.real("mass_damping", non_negative("1/s"), 0.0);
+  solid.mass_damping = sec.time_function("mass_damping", "1/s", TimeFunction{});
+  if (solid.mass_damping.lowest() < 0.0)
+    sec.error("mass_damping",
+              "a damping >= 0 1/s at every time (a number, a ramp that stays >= 0, or a table of "
+              "values >= 0)");
   auto materials = sec.section_list("materials", 1);
   for (auto& m : materials) solid.materials.push_back(read_material(m));
   check_unique_names(sec, materials, solid.materials);

@@ -171,7 +171,9 @@ struct SolidSpec {
   std::optional<ContactSpec> contact;  // absent: no contact system
   std::vector<SolidBoundarySpec> boundaries;
   std::array<double, 3> gravity{};  // [m/s^2]
-  double mass_damping = 0.0;  // c [1/s]: a drag -c m v on every node (dynamic relaxation to a static state)
+  // c [1/s]: a drag -c m v on every node (dynamic relaxation to a static state), a function of time so that
+  // a run can first settle under its initial loads and then go on undamped.
+  TimeFunction mass_damping;
   std::optional<FractureSpec> fracture;             // absent: continuous mesh, no joints
   std::optional<InitialStressSpec> initial_stress;  // absent: stress-free start
 };

@@ -17,7 +17,40 @@ struct TimeFunction {
   std::vector<std::pair<double, double>> points;  // table: (time, value), strictly increasing time
 
   double operator()(double t) const;
+  // Smallest and largest value over all times (a ramp without limit is unbounded on one side).
+  double lowest() const;
+  double highest() const;
 };
+
+inline double TimeFunction::lowest() const {
+  switch (kind) {
+    case Kind::constant:
+      return value;
+    case Kind::ramp:
+      return rate >= 0 ? value : (has_limit ? limit : -1.0 / 0.0);
+    case Kind::table: {
+      double v = points.empty() ? 0.0 : points.front().second;
+      for (const auto& p : points) v = p.second < v ? p.second : v;
+      return v;
+    }
+  }
+  return value;
+}
+
+inline double TimeFunction::highest() const {
+  switch (kind) {
+    case Kind::constant:
+      return value;
+    case Kind::ramp:
+      return rate <= 0 ? value : (has_limit ? limit : 1.0 / 0.0);
+    case Kind::table: {
+      double v = points.empty() ? 0.0 : points.front().second;
+      for (const auto& p : points) v = p.second > v ? p.second : v;
+      return v;
+    }
+  }
+  return value;
+}
 
 inline double TimeFunction::operator()(double t) const {
   switch (kind) {

@@ -37,6 +37,8 @@ const std::vector<BadScene> kBadScenes = {
        "unknown key 'soild'", "did you mean 'solid'?"}}},
     {"wrong_type.yaml", {{12, 12, "solid.gravity", "a list of 3 numbers", "'-9.81'", ""}}},
     {"negative_density.yaml", {{14, 16, "solid.materials[0].density", "kg/m^3, > 0", "'-2700'", ""}}},
+    {"negative_mass_damping.yaml",
+     {{12, 3, "solid.mass_damping", "a damping >= 0 1/s at every time", "", ""}}},
     {"poisson_half.yaml", {{16, 16, "solid.materials[0].poisson", "in [0, 0.5)", "'0.5'", ""}}},
     {"missing_mesh_file.yaml",
      {{7, 9, "mesh.file", "an existing Gmsh MSH 4.1 file", "'does_not_exist.msh'",

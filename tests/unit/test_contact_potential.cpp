@@ -120,6 +120,46 @@ TEST(ContactPotential, ForceAndMomentBalance) {
   EXPECT_GT(overlapping, 50);
 }
 
+TEST(ContactPotential, PerTetPenaltiesScaleEachWayAndKeepTheBalance) {
+  // F(p_a, p_b) is linear in the two penalties, one per way: F(p_a, p_b) = F(p_a, 0) + F(0, p_b),
+  // F(p, p) is the one-penalty force, and every split keeps the force and moment balance.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  int overlapping = 0;
+  for (int k = 0; k < 100; ++k) {
+    const double ca[3] = {0, 0, 0}, cb[3] = {u(rng), u(rng), u(rng)};
+    const Tet a = random_tet(rng, ca), b = random_tet(rng, cb);
+    double xa[4][3], xb[4][3];
+    for (int c = 0; c < 4; ++c)
+      for (int d = 0; d < 3; ++d) xa[c][d] = a[c][d], xb[c][d] = b[c][d];
+    const TetPairForce one = tet_pair_potential_force(xa, xb, kP);
+    if (one.weight == 0.0) continue;
+    ++overlapping;
+    const TetPairForce same = tet_pair_potential_force(xa, xb, kP, kP);
+    const TetPairForce both = tet_pair_potential_force(xa, xb, 2 * kP, 0.5 * kP);
+    const TetPairForce only_a = tet_pair_potential_force(xa, xb, 2 * kP, 0.0);
+    const TetPairForce only_b = tet_pair_potential_force(xa, xb, 0.0, 0.5 * kP);
+    const double scale = max_abs(both);
+    double f[3] = {0, 0, 0}, m[3] = {0, 0, 0};
+    for (int c = 0; c < 8; ++c) {
+      const auto& x = c < 4 ? a[c] : b[c - 4];
+      for (int d = 0; d < 3; ++d) {
+        EXPECT_EQ(same.f[c][d], one.f[c][d]);
+        EXPECT_NEAR(both.f[c][d], only_a.f[c][d] + only_b.f[c][d], 1e-12 * scale);
+        f[d] += both.f[c][d];
+      }
+      m[0] += x[1] * both.f[c][2] - x[2] * both.f[c][1];
+      m[1] += x[2] * both.f[c][0] - x[0] * both.f[c][2];
+      m[2] += x[0] * both.f[c][1] - x[1] * both.f[c][0];
+    }
+    for (int d = 0; d < 3; ++d) {
+      EXPECT_LT(std::abs(f[d]), 1e-12 * scale) << k;
+      EXPECT_LT(std::abs(m[d]), 1e-12 * scale) << k;
+    }
+  }
+  EXPECT_GT(overlapping, 25);
+}
+
 TEST(ContactPotential, SwappingContactorAndTarget) {
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> u(-0.3, 0.3);

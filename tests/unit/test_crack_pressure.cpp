@@ -158,3 +158,33 @@ TEST(MassDamping, RigidMotionDecaysAsTheDampedLeapfrogAndTheEnergyIsBooked) {
   // The initial kinetic energy counts as external work: it is now kinetic energy or dissipated.
   EXPECT_LT(std::abs(e.balance_error()), 1e-9 * e.external_work);
 }
+
+TEST(MassDamping, AScheduleDampsUntilItEndsAndThenKeepsTheMotion) {
+  // The same rigid flight with the drag on for the first 100 steps only (a table that drops to 0): the
+  // velocity decays by keep^100 and then stays, and the booked dissipation stops growing with it.
+  const double c = 2000.0;
+  Scene scene = load_scene(
+      std::string(RIFT_SOURCE_DIR) + "/scenes/validation/contact_collision.yaml",
+      {"solid.initial_velocity[0].velocity=[-1.5, 0, 0]", "solid.initial_velocity[1].velocity=[0.5, 0, 0]"});
+  auto probe = start(scene);
+  probe->step_once();
+  const double dt = probe->time();
+  const double t_off = 99.5 * dt;  // steps 0..99 start before it (damped), step 100 on after (undamped)
+  scene.solid->mass_damping.kind = TimeFunction::Kind::table;
+  scene.solid->mass_damping.points = {{0.0, c}, {t_off - 1e-3 * dt, c}, {t_off, 0.0}};
+  auto sim = start(scene);
+  for (int i = 0; i < 100; ++i) sim->step_once();
+  const double damping_at_off = solid_of(*sim).energies().damping;
+  for (int i = 0; i < 100; ++i) sim->step_once();
+  const double keep = (1.0 - 0.5 * c * dt) / (1.0 + 0.5 * c * dt);
+  const auto v = sim->world().store.table(solid::node_table).span<const double>("v");
+  const double expected_right = 0.5 * std::pow(keep, 100);
+  double worst = 0.0;
+  for (size_t i = 0; i < v.size(); i += 3)
+    if (v[i] > 0) worst = std::max(worst, std::abs(v[i] / expected_right - 1.0));
+  EXPECT_LT(worst, 1e-9);
+  const SolidEnergies e = solid_of(*sim).energies();
+  EXPECT_GT(damping_at_off, 0.0);
+  EXPECT_EQ(e.damping, damping_at_off);
+  EXPECT_LT(std::abs(e.balance_error()), 1e-9 * e.external_work);
+}

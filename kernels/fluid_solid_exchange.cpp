@@ -16,6 +16,24 @@ void tet_mean_vectors(std::span<const double> node_value, std::span<const int32_
     }
 }
 
+void tet_volume_rates(std::span<const double> x, std::span<const int32_t> tet_nodes, double dt,
+                      std::span<double> volume_prev, std::span<double> theta, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
+    double e[3][3];
+    const size_t n0 = static_cast<size_t>(tet_nodes[4 * t]);
+    for (int c = 0; c < 3; ++c) {
+      const size_t n = static_cast<size_t>(tet_nodes[4 * t + c + 1]);
+      for (int d = 0; d < 3; ++d) e[c][d] = x[3 * n + d] - x[3 * n0 + d];
+    }
+    const double v = (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+                     6.0;
+    theta[t] = v != 0.0 && dt > 0.0 ? (v - volume_prev[t]) / (dt * v) : 0.0;
+    volume_prev[t] = v;
+  }
+}
+
 namespace {
 void corners(std::span<const double> x, std::span<const int32_t> tet_nodes, int32_t t, double c[4][3]) {
   for (int a = 0; a < 4; ++a)
@@ -49,12 +67,13 @@ void pair_ranges(std::span<const CouplingPair> pairs, std::span<int64_t> first) 
 
 void solid_to_fluid_cells(const SolidToFluidArgs& a, size_t begin, size_t end) {
   for (size_t k = begin; k < end; ++k) {
-    double v = 0.0, m[3] = {0.0, 0.0, 0.0};
+    double v = 0.0, m[3] = {0.0, 0.0, 0.0}, rate = 0.0;
     for (int64_t p = a.first[k]; p < a.first[k + 1]; ++p) {
       const double w = a.pair_volume[p];
       const size_t s = static_cast<size_t>(a.pairs[p].solid);
       v += w;
       for (int d = 0; d < 3; ++d) m[d] += w * a.solid_velocity[3 * s + d];
+      if (!a.solid_dilatation.empty()) rate += w * a.solid_dilatation[s];
     }
     const double alpha = a.fluid_volume[k] > 0.0 ? std::clamp(v / a.fluid_volume[k], 0.0, 1.0) : 0.0;
     a.solid_volume[k] = v;
@@ -62,6 +81,8 @@ void solid_to_fluid_cells(const SolidToFluidArgs& a, size_t begin, size_t end) {
     for (int d = 0; d < 3; ++d) a.target[3 * k + d] = v > 0.0 ? m[d] / v : 0.0;
     a.sigma[k] = a.beta * a.rho * alpha / a.dt;
     a.pair_weight[k] = v > a.fluid_volume[k] ? a.fluid_volume[k] / v : 1.0;
+    if (!a.dilatation.empty())
+      a.dilatation[k] = a.fluid_volume[k] > 0.0 ? a.pair_weight[k] * rate / a.fluid_volume[k] : 0.0;
   }
 }
 

@@ -7,7 +7,13 @@
 //     |K ∩ Omega_s| = sum_S V_KS,  alpha_K = |K ∩ Omega_s| / |K| (clamped to [0, 1]);
 //     u_s,K = sum_S V_KS ubar_S / sum_S V_KS (ubar_S: the mean of S's node velocities);
 //     sigma_K = beta rho_f alpha_K / dt: the implicit absorption that relaxes the flow inside the solid
-//     to the solid's velocity (beta = 1 halves the slip in one step).
+//     to the solid's velocity (beta = 1 halves the slip in one step);
+//     s_K = sum_S V_KS theta_S / |K| (theta_S = (V_S - V_S^prev) / (dt V_S), S's volume change over the
+//     last window of solid steps: the mean over the window, not a sample of the elastic ringing that the
+//     window's many solid steps resolve): the solid's rate of volume change per unit volume of K, the
+//     divergence the fluid's continuity must allow where the solid is (fluid.md 1.2: a compressible solid in
+//     an incompressible mixture is "modelled through time variations of a volume fraction"). Without it, a
+//     solid that breathes (elastic waves, an opening crack) pumps pressure into the whole fluid.
 //   fluid -> solid (after it): the force of the fluid on the part K ∩ S of the solid,
 //     F_KS = w_K V_KS [ beta rho_f / dt (ubar_K - u_s,K)  +  rho_f (ubar_K - ubar_K^old) / dt  -  f ],
 //     ubar_K the mean of K's node velocities after the step, ubar_K^old before it, f the fluid body force
@@ -34,6 +40,12 @@ namespace rift::kernels {
 void tet_mean_vectors(std::span<const double> node_value, std::span<const int32_t> tet_nodes,
                       std::span<double> out, size_t begin, size_t end);
 
+// Mean volumetric strain rate of each tet in [begin, end) since the previous call:
+// theta = (V - V_prev) / (dt V) from positions x (3 per node); volume_prev (in/out, 1 per tet) becomes V.
+// 0 for a degenerate tet.
+void tet_volume_rates(std::span<const double> x, std::span<const int32_t> tet_nodes, double dt,
+                      std::span<double> volume_prev, std::span<double> theta, size_t begin, size_t end);
+
 struct OverlapArgs {
   std::span<const double> fluid_x;           // fluid node positions, 3 per node
   std::span<const int32_t> fluid_tet_nodes;  // 4 per fluid tet
@@ -50,19 +62,20 @@ void overlap_volumes(const OverlapArgs& a, size_t begin, size_t end);
 void pair_ranges(std::span<const CouplingPair> pairs, std::span<int64_t> first);
 
 struct SolidToFluidArgs {
-  double rho = 0.0;                        // fluid density [kg/m^3]
-  double beta = 1.0;                       // absorption weight
-  double dt = 0.0;                         // fluid step [s]
-  std::span<const double> fluid_volume;    // |K|, 1 per fluid tet
-  std::span<const CouplingPair> pairs;     // sorted by fluid tet
-  std::span<const int64_t> first;          // pair_ranges
-  std::span<const double> pair_volume;     // V_KS
-  std::span<const double> solid_velocity;  // ubar_S, 3 per solid tet
+  double rho = 0.0;                          // fluid density [kg/m^3]
+  double beta = 1.0;                         // absorption weight
+  double dt = 0.0;                           // fluid step [s]
+  std::span<const double> fluid_volume;      // |K|, 1 per fluid tet
+  std::span<const CouplingPair> pairs;       // sorted by fluid tet
+  std::span<const int64_t> first;            // pair_ranges
+  std::span<const double> pair_volume;       // V_KS
+  std::span<const double> solid_velocity;    // ubar_S, 3 per solid tet
+  std::span<const double> solid_dilatation;  // theta_S, 1 per solid tet (tet_dilatation_rates)
   // out, per fluid tet: |K ∩ Omega_s| (1), alpha_K (1), u_s,K (3; 0 where there is no solid), sigma_K (1),
   // and the weight of K's pairs in the force, min(1, |K| / sum_S V_KS) (1): below 1 only where solid tets
   // overlap (joints in compression interpenetrate a little), so that the clamped alpha and the pairs'
-  // force still balance exactly.
-  std::span<double> solid_volume, fraction, target, sigma, pair_weight;
+  // force still balance exactly; s_K (1), weighted the same way.
+  std::span<double> solid_volume, fraction, target, sigma, pair_weight, dilatation;
 };
 
 // Fluid tets [begin, end).

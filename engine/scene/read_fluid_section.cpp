@@ -110,6 +110,7 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   c.substeps = sec.integer("substeps", IntRule{0, INT32_MAX}, 0);
   c.beta = sec.real("beta", positive(""), 1.0);
   c.added_mass = sec.real("added_mass", non_negative(""), 0.0);
+  c.dilatation = sec.boolean("dilatation", false);
   sec.finish();
   return c;
 }

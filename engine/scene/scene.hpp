@@ -236,6 +236,10 @@ struct FluidSolidSpec {
   // so the staggered exchange stays stable for a solid lighter than about the fluid (added-mass
   // instability). 0: off. It lags the fluid's added mass by one window; no effect at steady acceleration.
   double added_mass = 0.0;
+  // The fluid's continuity allows the solid's rate of volume change where the solid is (div u = s_K,
+  // docs/coupling.md); off: div u = 0 everywhere. Off by default: with the lagged exchange it made the
+  // wedge scene's coupling unstable (docs/speed-accuracy.md).
+  bool dilatation = false;
 };
 
 struct TimeSpec {

@@ -29,6 +29,15 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
   ft.add<double>("solid_fraction", 1);
   ft.add<double>("solid_velocity", 3);
   ft.add<double>("absorption", 1);
+  ft.add<double>("solid_dilatation", 1);
+  // The solid's volumes at the last exchange, for its mean rate of volume change over each window; at
+  // first those of the initial configuration, so the exchange at t = 0 sees no change.
+  Table& solid_tets = store_.table(solid::tet_table);
+  solid_tets.add<double>("volume_at_exchange", 1);
+  std::vector<double> unused(solid_tets.size());
+  kernels::tet_volume_rates(store_.table(solid::node_table).span<const double>("x"),
+                            solid_tets.span<const int32_t>("nodes"), 0.0,
+                            solid_tets.span<double>("volume_at_exchange"), unused, 0, solid_tets.size());
   ft.add<double>("velocity_before", 3);
   const size_t nf = ft.size(), ns = store_.table(solid::tet_table).size();
   pairs_.fluid_ids.resize(nf);
@@ -43,6 +52,7 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
   pairs_.solid_lo.resize(3 * ns);
   pairs_.solid_hi.resize(3 * ns);
   pairs_.solid_velocity.resize(3 * ns);
+  pairs_.solid_dilatation.resize(ns);
   pairs_.fluid_velocity.resize(3 * nf);
   pairs_.first.resize(nf + 1);
   pairs_.pair_weight.resize(nf);
@@ -53,9 +63,11 @@ Access SolidToFluidSystem::access() const {
   const char* F = fluid::tet_table;
   return {{col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
            fluid::col(fluid::node_table, "velocity")},
-          {fluid::col(F, "solid_volume"), fluid::col(F, "solid_fraction"), fluid::col(F, "solid_velocity"),
-           fluid::col(F, "absorption"), fluid::col(F, "velocity_before"), col(coupling::state_table, "pairs"),
-           col(coupling::state_table, "cut_cells"), col(coupling::state_table, "solid_volume")}};
+          {col(solid::tet_table, "volume_at_exchange"), fluid::col(F, "solid_volume"),
+           fluid::col(F, "solid_fraction"), fluid::col(F, "solid_velocity"), fluid::col(F, "absorption"),
+           fluid::col(F, "solid_dilatation"), fluid::col(F, "velocity_before"),
+           col(coupling::state_table, "pairs"), col(coupling::state_table, "cut_cells"),
+           col(coupling::state_table, "solid_volume")}};
 }
 
 void SolidToFluidSystem::run(const StepContext& ctx) {
@@ -68,9 +80,11 @@ void SolidToFluidSystem::exchange() {
   const auto v = nodes.span<double>("v");
   const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
   const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
+  const auto volume_prev = store_.table(solid::tet_table).span<double>("volume_at_exchange");
   parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
     kernels::tet_mean_vectors(v, solid_tets, pairs_.solid_velocity, b, e);
+    kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
   });
   kernels::coupling_broad_phase({pairs_.fluid_lo, pairs_.fluid_hi, pairs_.solid_lo, pairs_.solid_hi, 0.0},
                                 pairs_.broad);
@@ -95,11 +109,13 @@ void SolidToFluidSystem::exchange() {
                                         pairs_.first,
                                         volume,
                                         pairs_.solid_velocity,
+                                        pairs_.solid_dilatation,
                                         ft.span<double>("solid_volume"),
                                         ft.span<double>("solid_fraction"),
                                         ft.span<double>("solid_velocity"),
                                         ft.span<double>("absorption"),
-                                        pairs_.pair_weight};
+                                        pairs_.pair_weight,
+                                        ft.span<double>("solid_dilatation")};
   const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
   parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
     kernels::solid_to_fluid_cells(cells, b, e);
@@ -125,6 +141,10 @@ void SolidToFluidSystem::restore_solver() {
   const auto target = ft.span<double>("solid_velocity");
   std::copy(sigma.begin(), sigma.end(), solver_.sigma().begin());
   std::copy(target.begin(), target.end(), solver_.target_velocity().begin());
+  if (settings_.dilatation) {
+    const auto dilatation = ft.span<double>("solid_dilatation");
+    std::copy(dilatation.begin(), dilatation.end(), solver_.dilatation().begin());
+  }
   solver_.absorption_changed();
 }
 

@@ -24,6 +24,7 @@ struct ExchangeSettings {
   double dt = 0.0;                     // fluid step [s]
   std::array<double, 3> body_force{};  // fluid body force [N/m^3]
   double added_mass = 0.0;             // c_a (FluidSolidSpec::added_mass)
+  bool dilatation = false;             // FluidSolidSpec::dilatation: the continuity source s_K
   bool volume_force = true;            // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
 };
@@ -37,6 +38,7 @@ struct ExchangePairs {
   std::vector<int64_t> first;                  // per fluid tet + 1
   std::vector<double> pair_weight;             // per fluid tet (kernels::SolidToFluidArgs::pair_weight)
   std::vector<double> solid_velocity;          // mean velocity per solid tet
+  std::vector<double> solid_dilatation;        // (dV/dt) / V per solid tet
   std::vector<double> fluid_velocity;          // mean velocity per fluid tet after the step
   // Wetted faces (solid boundaries of type fluid_pressure): rows of solid_load_face, their centroids (also
   // their zero-size boxes), the candidate fluid tets of each centroid, the sampled pressures.

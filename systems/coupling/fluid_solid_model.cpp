@@ -25,6 +25,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.dt = fluid.spec().dt;
   settings_.body_force = fluid.spec().body_force;
   settings_.added_mass = spec.added_mass;
+  settings_.dilatation = spec.dilatation;
   settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
   Table& state = store_.add_table(coupling::state_table);

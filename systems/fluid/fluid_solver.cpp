@@ -117,6 +117,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   sigma_.assign(nt, 0.0);
   target_.assign(3 * nt, 0.0);
   source_.assign(3 * nt, 0.0);
+  dilatation_.assign(nt, 0.0);
   for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
 
   momentum_ = p1_pattern(static_cast<int32_t>(nn), tet_nodes_);
@@ -258,6 +259,16 @@ int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> 
     for (size_t n = 0; n < nn; ++n) u3[3 * n + d] = x_c_[n];
   }
   return its;
+}
+
+// The continuity residual is -sum_t (V/4)(div u_t - s_t) per node: the immersed solid's dilatation s
+// (zero without one) adds +(V/4) s_t to each corner.
+void FluidSolver::add_dilatation(std::span<double> residual) const {
+  for (size_t t = 0; t < dilatation_.size(); ++t) {
+    if (dilatation_[t] == 0.0) continue;
+    const double share = 0.25 * volume_[t] * dilatation_[t];
+    for (int q = 0; q < 4; ++q) residual[static_cast<size_t>(tet_nodes_[4 * t + q])] += share;
+  }
 }
 
 void FluidSolver::schur_velocity(std::span<const double> v, std::span<double> u_v, int& velocity_iterations) {
@@ -468,6 +479,7 @@ FluidStepReport FluidSolver::step() {
     rep.velocity_iterations += solve_momentum(rhs_, u_star_, false, s.velocity_forcing);
     // 2. Pressure: residual -R(u*, p^k) of the stabilised continuity equation.
     assembly_.pressure_rhs({tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_}, cont_res_);
+    add_dilatation(cont_res_);
     if (s.coupling == PressureCoupling::schur_gmres) {
       double sum = 0.0;
       for (size_t n = 0; n < nn; ++n) {

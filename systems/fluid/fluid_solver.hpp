@@ -116,6 +116,9 @@ class FluidSolver {
   std::span<double> sigma() { return sigma_; }
   std::span<double> target_velocity() { return target_; }
   std::span<double> source() { return source_; }
+  // The divergence the continuity equation allows per tet, div u = s [1/s] (the immersed solid's rate of
+  // volume change per unit volume; zero by default).
+  std::span<double> dilatation() { return dilatation_; }
   void absorption_changed() { pressure_matrix_stale_ = true; }
   // Body force per unit volume f(x, t) [N/m^3], evaluated at the nodes (theta-weighted in time).
   void set_body_force(VectorField f) { body_force_fn_ = std::move(f); }
@@ -156,6 +159,7 @@ class FluidSolver {
   void build_component_matrices();
   int solve_momentum(std::span<const double> rhs3, std::span<double> u3, bool homogeneous,
                      double forcing = 0.0);
+  void add_dilatation(std::span<double> residual) const;
   void schur_velocity(std::span<const double> v, std::span<double> u_v, int& velocity_iterations);
   void schur_apply(std::span<const double> v, std::span<double> sv, SchurStats& st);
   void schur_precondition(std::span<const double> r, std::span<double> z, SchurStats& st);
@@ -181,7 +185,7 @@ class FluidSolver {
   std::vector<double> phi_value_;
   // Fields.
   std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
-  std::vector<double> sigma_, target_, source_;
+  std::vector<double> sigma_, target_, source_, dilatation_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
   // Linear algebra.

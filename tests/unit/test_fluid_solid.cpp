@@ -69,7 +69,8 @@ double total_volume(const FlatMesh& m) {
 struct Exchange {
   FlatMesh fluid = box_mesh({0, 0, 0}, {1, 1, 1}, {6, 6, 6}, 0.0);
   FlatMesh solid = box_mesh({0.3, 0.3, 0.3}, {0.7, 0.65, 0.6}, {3, 2, 2}, 0.4);
-  std::vector<double> fluid_volume, solid_v, volume, solid_volume, fraction, target, sigma, weight;
+  std::vector<double> fluid_volume, solid_v, solid_theta, volume, solid_volume, fraction, target, sigma,
+      weight, dilatation;
   std::vector<int64_t> first;
   CouplingBroadPhaseWorkspace ws;
   double rho = 1000.0, beta = 1.0, dt = 0.01;
@@ -99,13 +100,20 @@ struct Exchange {
     for (size_t i = 0; i < node_v.size(); ++i) node_v[i] = random_velocity ? u(rng) : solid_velocity[i % 3];
     solid_v.resize(3 * ns);
     tet_mean_vectors(node_v, solid.tets, solid_v, 0, ns);
+    // The solid's mean rate of volume change over a window of length dt in which it moved by node_v dt.
+    solid_theta.resize(ns);
+    std::vector<double> volume_prev(ns), moved(solid.x.size());
+    for (size_t i = 0; i < moved.size(); ++i) moved[i] = solid.x[i] + dt * node_v[i];
+    tet_volume_rates(solid.x, solid.tets, dt, volume_prev, solid_theta, 0, ns);
+    tet_volume_rates(moved, solid.tets, dt, volume_prev, solid_theta, 0, ns);
+    dilatation.resize(nf);
     solid_volume.resize(nf);
     fraction.resize(nf);
     target.resize(3 * nf);
     sigma.resize(nf);
     weight.resize(nf);
-    solid_to_fluid_cells({rho, beta, dt, fluid_volume, ws.pairs, first, volume, solid_v, solid_volume,
-                          fraction, target, sigma, weight},
+    solid_to_fluid_cells({rho, beta, dt, fluid_volume, ws.pairs, first, volume, solid_v, solid_theta,
+                          solid_volume, fraction, target, sigma, weight, dilatation},
                          0, nf);
   }
 };
@@ -118,6 +126,43 @@ TEST(FluidSolidExchange, SolidVolumeIsConservedOnTheFluidMesh) {
     EXPECT_GE(a, 0.0);
     EXPECT_LE(a, 1.0);
   }
+}
+
+TEST(FluidSolidExchange, VolumeRateIsThatOfTheMotion) {
+  // x -> (1 + e dt) R x (a uniform stretch and a rigid rotation over the window dt): every tet's volume
+  // grows by (1 + e dt)^3, so theta = ((1 + e dt)^3 - 1) / ((1 + e dt)^3 dt), exactly.
+  const FlatMesh m = box_mesh({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0.3);
+  const double e = 0.7, dt = 0.01, c = std::cos(0.4), s = std::sin(0.4), g = 1 + e * dt;
+  std::vector<double> moved(m.x.size());
+  for (size_t n = 0; n < m.x.size() / 3; ++n) {
+    const double* x = &m.x[3 * n];
+    moved[3 * n + 0] = g * (c * x[0] - s * x[1]);
+    moved[3 * n + 1] = g * (s * x[0] + c * x[1]);
+    moved[3 * n + 2] = g * x[2];
+  }
+  std::vector<double> volume_prev(m.num_tets()), theta(m.num_tets());
+  tet_volume_rates(m.x, m.tets, dt, volume_prev, theta, 0, theta.size());
+  tet_volume_rates(moved, m.tets, dt, volume_prev, theta, 0, theta.size());
+  const double expected = (g * g * g - 1) / (g * g * g * dt);
+  for (double t : theta) EXPECT_NEAR(t, expected, 1e-9 * expected);
+}
+
+TEST(FluidSolidExchange, TheSolidsVolumeRateIsConservedOnTheFluidMesh) {
+  // sum_K s_K |K| = sum_S theta_S |S| for random node motions: the continuity source carries exactly the
+  // solid's rate of volume change to the fluid (|S| the volume at the window's end, as theta's).
+  Exchange e;
+  double fluid_side = 0.0, solid_side = 0.0;
+  for (size_t k = 0; k < e.dilatation.size(); ++k) fluid_side += e.dilatation[k] * e.fluid_volume[k];
+  for (size_t t = 0; t < e.solid_theta.size(); ++t) {
+    double c[4][3];
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) c[a][d] = e.solid.x[3 * static_cast<size_t>(e.solid.tets[4 * t + a]) + d];
+    solid_side += e.solid_theta[t] * tet_volume(c);  // the overlaps are of the unmoved solid
+  }
+  double scale = 0.0;
+  for (size_t t = 0; t < e.solid_theta.size(); ++t) scale += std::abs(e.solid_theta[t]);
+  EXPECT_GT(std::abs(solid_side), 0.0);
+  EXPECT_NEAR(fluid_side, solid_side, 1e-12 * scale);
 }
 
 TEST(FluidSolidExchange, PenaltyOnTheSolidIsMinusTheFluidsAbsorption) {
@@ -260,7 +305,7 @@ TEST(FluidSolidRun, AnEndTimeOffTheFluidStepIsRefused) {
 namespace rift {
 namespace {
 
-TEST(FluidSolidRun, WettedFacesCarryTheFluidsPressure) {
+void check_wetted_faces(bool dilatation) {
   // fluid_solid.force: wetted_faces with the block's top and bottom wetted (type fluid_pressure), in the
   // box of fluid at rest, without gravity, the pressure on the box's top ramping at 5e6 Pa/s: the fluid's
   // pressure is uniform, p_top(t), and every wetted face must carry p_top at the last fluid step (1e5 Pa at
@@ -275,7 +320,8 @@ TEST(FluidSolidRun, WettedFacesCarryTheFluidsPressure) {
       "fluid.boundaries[5]={surface: zmax, type: pressure, value: {ramp: {value: 0, "
       "start_time: 0, rate: 5.0e6}}}",
       "solid.boundaries=[{surface: zmin, type: fluid_pressure}, {surface: zmax, type: "
-      "fluid_pressure}]"};
+      "fluid_pressure}]",
+      std::string("fluid_solid.dilatation=") + (dilatation ? "true" : "false")};
   Simulation sim(block_scene(wet), quiet());
   while (sim.step() < sim.total_steps()) sim.step_once();
   const Store& store = sim.world().store;
@@ -294,6 +340,16 @@ TEST(FluidSolidRun, WettedFacesCarryTheFluidsPressure) {
   EXPECT_NEAR(push, 2 * 0.04 * 5.0e6 * (sim.time() - 0.005), 1e-3 * push);
   const auto force = store.table(coupling::state_table).span<double>("force");
   EXPECT_NEAR(force[2], 0.0, 1e-6 * p_top * 0.04);
+}
+
+TEST(FluidSolidRun, WettedFacesCarryTheFluidsPressure) {
+  check_wetted_faces(false);
+}
+
+// With the continuity source the fluid lets the block shrink instead of resisting it; the faces still
+// carry p_top (measured residue 9.2e-6 with and 8.8e-6 without: the compression-driven flow is tiny here).
+TEST(FluidSolidRun, WettedFacesCarryTheFluidsPressureWithTheSolidsDilatation) {
+  check_wetted_faces(true);
 }
 
 }  // namespace

@@ -78,8 +78,7 @@ void add_coupled_fluid(World& world, const Scene& scene) {
     throw Error(fmt::format(
         "fluid_solid.substeps = {} makes the solid step fluid.dt / substeps = {:.6g} s, above the solid's "
         "stable step {:.6g} s. Use fluid_solid.substeps >= {} ({} at time.safety = {}), or 0 to choose it, "
-        "or set "
-        "time.allow_unstable_dt: true to run it on purpose.",
+        "or set time.allow_unstable_dt: true to run it on purpose.",
         substeps, fluid.dt / static_cast<double>(substeps), stable,
         static_cast<int64_t>(std::ceil(fluid.dt / stable)), automatic, scene.time.safety));
   const double windows = scene.time.end / fluid.dt;

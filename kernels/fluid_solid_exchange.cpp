@@ -16,24 +16,6 @@ void tet_mean_vectors(std::span<const double> node_value, std::span<const int32_
     }
 }
 
-void tet_volume_rates(std::span<const double> x, std::span<const int32_t> tet_nodes, double dt,
-                      std::span<double> volume_prev, std::span<double> theta, size_t begin, size_t end) {
-  for (size_t t = begin; t < end; ++t) {
-    double e[3][3];
-    const size_t n0 = static_cast<size_t>(tet_nodes[4 * t]);
-    for (int c = 0; c < 3; ++c) {
-      const size_t n = static_cast<size_t>(tet_nodes[4 * t + c + 1]);
-      for (int d = 0; d < 3; ++d) e[c][d] = x[3 * n + d] - x[3 * n0 + d];
-    }
-    const double v = (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
-                     6.0;
-    theta[t] = v != 0.0 && dt > 0.0 ? (v - volume_prev[t]) / (dt * v) : 0.0;
-    volume_prev[t] = v;
-  }
-}
-
 namespace {
 void corners(std::span<const double> x, std::span<const int32_t> tet_nodes, int32_t t, double c[4][3]) {
   for (int a = 0; a < 4; ++a)
@@ -41,6 +23,17 @@ void corners(std::span<const double> x, std::span<const int32_t> tet_nodes, int3
       c[a][d] = x[3 * static_cast<size_t>(tet_nodes[4 * static_cast<size_t>(t) + a]) + d];
 }
 }  // namespace
+
+void tet_volume_rates(std::span<const double> x, std::span<const int32_t> tet_nodes, double dt,
+                      std::span<double> volume_prev, std::span<double> theta, size_t begin, size_t end) {
+  double c[4][3];
+  for (size_t t = begin; t < end; ++t) {
+    corners(x, tet_nodes, static_cast<int32_t>(t), c);
+    const double v = tet_volume(c);
+    theta[t] = v != 0.0 && dt > 0.0 ? (v - volume_prev[t]) / (dt * v) : 0.0;
+    volume_prev[t] = v;
+  }
+}
 
 void overlap_volumes(const OverlapArgs& a, size_t begin, size_t end) {
   double k[4][3], s[4][3];

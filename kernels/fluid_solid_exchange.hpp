@@ -70,11 +70,11 @@ struct SolidToFluidArgs {
   std::span<const int64_t> first;            // pair_ranges
   std::span<const double> pair_volume;       // V_KS
   std::span<const double> solid_velocity;    // ubar_S, 3 per solid tet
-  std::span<const double> solid_dilatation;  // theta_S, 1 per solid tet (tet_dilatation_rates)
+  std::span<const double> solid_dilatation;  // theta_S, 1 per solid tet (tet_volume_rates); may be empty
   // out, per fluid tet: |K ∩ Omega_s| (1), alpha_K (1), u_s,K (3; 0 where there is no solid), sigma_K (1),
   // and the weight of K's pairs in the force, min(1, |K| / sum_S V_KS) (1): below 1 only where solid tets
   // overlap (joints in compression interpenetrate a little), so that the clamped alpha and the pairs'
-  // force still balance exactly; s_K (1), weighted the same way.
+  // force still balance exactly; s_K (1), weighted the same way (may be empty, with solid_dilatation).
   std::span<double> solid_volume, fraction, target, sigma, pair_weight, dilatation;
 };
 

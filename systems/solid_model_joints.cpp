@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
 
 #include "engine/core/error.hpp"
 #include "kernels/joint_initial_state.hpp"
@@ -240,13 +241,15 @@ void SolidModel::build_contact(const TetMesh& mesh) {
     for (const auto& m : joint_materials_) joint_penalty.push_back(m.penalty);
     matched = matched_contact_penalties(store_, joint_penalty);
   }
-  double mean = 0.0;
-  for (double p : matched) mean += p / static_cast<double>(matched.size());
   if (!contact.penalty && matched.empty()) {
     double young = 0.0;
     for (const auto& m : spec_.materials) young = std::max(young, m.young);
     contact.penalty = 10.0 * young;
-  } else if (contact.penalty && !matched.empty() && *contact.penalty > 2.0 * mean) {
+  }
+  const double mean = matched.empty() ? 0.0
+                                      : std::accumulate(matched.begin(), matched.end(), 0.0) /
+                                            static_cast<double>(matched.size());
+  if (contact.penalty && !matched.empty() && *contact.penalty > 2.0 * mean) {
     spdlog::warn(
         "solid.contact.penalty {:.4g} Pa is {:.1f} x the mean penalty matched to the joints ({:.4g} Pa): a "
         "joint broken under compression hands its load to a much stiffer spring, which throws the faces "

@@ -1,6 +1,7 @@
 #pragma once
 // A scalar function of simulated time, as scenes give loads: constant, linear ramp, or a
 // piecewise-linear table (held constant outside its range).
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -27,7 +28,7 @@ inline double TimeFunction::lowest() const {
     case Kind::constant:
       return value;
     case Kind::ramp:
-      return rate >= 0 ? value : (has_limit ? limit : -1.0 / 0.0);
+      return rate >= 0 ? value : (has_limit ? limit : -std::numeric_limits<double>::infinity());
     case Kind::table: {
       double v = points.empty() ? 0.0 : points.front().second;
       for (const auto& p : points) v = p.second < v ? p.second : v;
@@ -42,7 +43,7 @@ inline double TimeFunction::highest() const {
     case Kind::constant:
       return value;
     case Kind::ramp:
-      return rate <= 0 ? value : (has_limit ? limit : 1.0 / 0.0);
+      return rate <= 0 ? value : (has_limit ? limit : std::numeric_limits<double>::infinity());
     case Kind::table: {
       double v = points.empty() ? 0.0 : points.front().second;
       for (const auto& p : points) v = p.second > v ? p.second : v;

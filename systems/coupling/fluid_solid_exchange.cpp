@@ -29,15 +29,17 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
   ft.add<double>("solid_fraction", 1);
   ft.add<double>("solid_velocity", 3);
   ft.add<double>("absorption", 1);
-  ft.add<double>("solid_dilatation", 1);
-  // The solid's volumes at the last exchange, for its mean rate of volume change over each window; at
-  // first those of the initial configuration, so the exchange at t = 0 sees no change.
-  Table& solid_tets = store_.table(solid::tet_table);
-  solid_tets.add<double>("volume_at_exchange", 1);
-  std::vector<double> unused(solid_tets.size());
-  kernels::tet_volume_rates(store_.table(solid::node_table).span<const double>("x"),
-                            solid_tets.span<const int32_t>("nodes"), 0.0,
-                            solid_tets.span<double>("volume_at_exchange"), unused, 0, solid_tets.size());
+  if (settings_.dilatation) {
+    ft.add<double>("solid_dilatation", 1);
+    // The solid's volumes at the last exchange, for its mean rate of volume change over each window; at
+    // first those of the initial configuration, so the exchange at t = 0 sees no change.
+    Table& solid_tets = store_.table(solid::tet_table);
+    solid_tets.add<double>("volume_at_exchange", 1);
+    pairs_.solid_dilatation.resize(solid_tets.size());
+    kernels::tet_volume_rates(
+        store_.table(solid::node_table).span<const double>("x"), solid_tets.span<const int32_t>("nodes"), 0.0,
+        solid_tets.span<double>("volume_at_exchange"), pairs_.solid_dilatation, 0, solid_tets.size());
+  }
   ft.add<double>("velocity_before", 3);
   const size_t nf = ft.size(), ns = store_.table(solid::tet_table).size();
   pairs_.fluid_ids.resize(nf);
@@ -52,7 +54,6 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
   pairs_.solid_lo.resize(3 * ns);
   pairs_.solid_hi.resize(3 * ns);
   pairs_.solid_velocity.resize(3 * ns);
-  pairs_.solid_dilatation.resize(ns);
   pairs_.fluid_velocity.resize(3 * nf);
   pairs_.first.resize(nf + 1);
   pairs_.pair_weight.resize(nf);
@@ -61,13 +62,17 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
 Access SolidToFluidSystem::access() const {
   using solid::col;
   const char* F = fluid::tet_table;
-  return {{col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
-           fluid::col(fluid::node_table, "velocity")},
-          {col(solid::tet_table, "volume_at_exchange"), fluid::col(F, "solid_volume"),
-           fluid::col(F, "solid_fraction"), fluid::col(F, "solid_velocity"), fluid::col(F, "absorption"),
-           fluid::col(F, "solid_dilatation"), fluid::col(F, "velocity_before"),
-           col(coupling::state_table, "pairs"), col(coupling::state_table, "cut_cells"),
-           col(coupling::state_table, "solid_volume")}};
+  Access a{
+      {col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
+       fluid::col(fluid::node_table, "velocity")},
+      {fluid::col(F, "solid_volume"), fluid::col(F, "solid_fraction"), fluid::col(F, "solid_velocity"),
+       fluid::col(F, "absorption"), fluid::col(F, "velocity_before"), col(coupling::state_table, "pairs"),
+       col(coupling::state_table, "cut_cells"), col(coupling::state_table, "solid_volume")}};
+  if (settings_.dilatation)
+    for (const std::string& c :
+         {col(solid::tet_table, "volume_at_exchange"), fluid::col(F, "solid_dilatation")})
+      a.writes.push_back(c);
+  return a;
 }
 
 void SolidToFluidSystem::run(const StepContext& ctx) {
@@ -80,11 +85,14 @@ void SolidToFluidSystem::exchange() {
   const auto v = nodes.span<double>("v");
   const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
   const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
-  const auto volume_prev = store_.table(solid::tet_table).span<double>("volume_at_exchange");
+  const auto volume_prev = settings_.dilatation
+                               ? store_.table(solid::tet_table).span<double>("volume_at_exchange")
+                               : std::span<double>{};
   parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
     kernels::tet_mean_vectors(v, solid_tets, pairs_.solid_velocity, b, e);
-    kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
+    if (settings_.dilatation)
+      kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
   });
   kernels::coupling_broad_phase({pairs_.fluid_lo, pairs_.fluid_hi, pairs_.solid_lo, pairs_.solid_hi, 0.0},
                                 pairs_.broad);
@@ -101,21 +109,22 @@ void SolidToFluidSystem::exchange() {
   kernels::pair_ranges(list, pairs_.first);
 
   Table& ft = store_.table(fluid::tet_table);
-  const kernels::SolidToFluidArgs cells{settings_.rho,
-                                        settings_.beta,
-                                        settings_.dt,
-                                        solver_.volumes(),
-                                        list,
-                                        pairs_.first,
-                                        volume,
-                                        pairs_.solid_velocity,
-                                        pairs_.solid_dilatation,
-                                        ft.span<double>("solid_volume"),
-                                        ft.span<double>("solid_fraction"),
-                                        ft.span<double>("solid_velocity"),
-                                        ft.span<double>("absorption"),
-                                        pairs_.pair_weight,
-                                        ft.span<double>("solid_dilatation")};
+  const kernels::SolidToFluidArgs cells{
+      settings_.rho,
+      settings_.beta,
+      settings_.dt,
+      solver_.volumes(),
+      list,
+      pairs_.first,
+      volume,
+      pairs_.solid_velocity,
+      pairs_.solid_dilatation,
+      ft.span<double>("solid_volume"),
+      ft.span<double>("solid_fraction"),
+      ft.span<double>("solid_velocity"),
+      ft.span<double>("absorption"),
+      pairs_.pair_weight,
+      settings_.dilatation ? ft.span<double>("solid_dilatation") : std::span<double>{}};
   const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
   parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
     kernels::solid_to_fluid_cells(cells, b, e);

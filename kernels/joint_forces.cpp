@@ -189,4 +189,17 @@ double joint_stable_step(std::span<const double> x, std::span<const int32_t> joi
   return dt;
 }
 
+void add_joint_node_stiffness(std::span<const double> x, std::span<const int32_t> joint_nodes,
+                              std::span<const int32_t> material, std::span<const JointMaterial> materials,
+                              std::span<const uint8_t> broken, std::span<double> stiffness) {
+  for (size_t j = 0; j < joint_nodes.size() / 6; ++j) {
+    if (!broken.empty() && broken[j] != 0) continue;
+    const int32_t* nodes = &joint_nodes[6 * j];
+    const JointGeometry g = geometry(x, nodes, nullptr);
+    if (!g.ok) continue;
+    const double k = 2.0 * materials[static_cast<size_t>(material[j])].penalty * g.area / (3.0 * g.h);
+    for (int i = 0; i < 6; ++i) stiffness[static_cast<size_t>(nodes[i])] += k;
+  }
+}
+
 }  // namespace rift::kernels

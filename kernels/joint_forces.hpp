@@ -118,4 +118,11 @@ double joint_stable_step(std::span<const double> x, std::span<const int32_t> joi
                          std::span<const double> node_mass, std::span<const uint8_t> broken, size_t begin,
                          size_t end);
 
+// Each intact joint's share of the per-node Gershgorin stiffness (stable_step.hpp): 2 p A / (3 h) on each of
+// its 6 nodes, the row sum above, so that K_n / m_n over the joints at a node is their omega^2 there.
+// stiffness: 1 per node, added to. broken may be empty (all intact).
+void add_joint_node_stiffness(std::span<const double> x, std::span<const int32_t> joint_nodes,
+                              std::span<const int32_t> material, std::span<const JointMaterial> materials,
+                              std::span<const uint8_t> broken, std::span<double> stiffness);
+
 }  // namespace rift::kernels

@@ -48,6 +48,8 @@ NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size
     }
     if (!a.external_node_force.empty())
       for (int c = 0; c < 3; ++c) f[2][c] += a.external_node_force[3 * n + c];
+    if (!a.crack_node_force.empty())
+      for (int c = 0; c < 3; ++c) f[2][c] += a.crack_node_force[3 * n + c];
     double fc[3] = {0.0, 0.0, 0.0};
     if (!a.node_force.empty())
       for (int c = 0; c < 3; ++c) fc[c] = a.node_force[3 * n + c];

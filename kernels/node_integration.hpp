@@ -43,6 +43,9 @@ struct NodeIntegrationArgs {
   // 3 per node, or empty: external forces gathered per node (the fluid's, systems/coupling); they join the
   // loaded faces' (source 2) and their work is external work.
   std::span<const double> external_node_force = {};
+  // 3 per node, or empty: the pressed crack faces' forces, gathered per node by the surface loads (only
+  // broken joints' faces carry them, so giving every joint face its slots would gather zeros); external.
+  std::span<const double> crack_node_force = {};
 };
 
 struct NodeStepResult {

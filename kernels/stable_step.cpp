@@ -1,8 +1,11 @@
 #include "kernels/stable_step.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "kernels/tet_intersection.hpp"
 
 namespace rift::kernels {
 
@@ -46,6 +49,98 @@ void for_each_tet_step(std::span<const double> x, std::span<const int32_t> tet_n
 }
 
 }  // namespace
+
+double tet_highest_omega2(const double c[4][3], const TetMaterial& m, double density) {
+  Eigen::Matrix3d E;
+  for (int i = 0; i < 3; ++i)
+    for (int r = 0; r < 3; ++r) E(r, i) = c[i + 1][r] - c[0][r];
+  if (!(E.determinant() > 0.0)) return 0.0;
+  const Eigen::Matrix3d inv = E.inverse();  // row i: the gradient of corner i + 1's shape function
+  Eigen::Vector3d g[4];
+  for (int a = 1; a < 4; ++a) g[a] = inv.row(a - 1).transpose();
+  g[0] = -(g[1] + g[2] + g[3]);
+  // M^-1 K_e with m = rho V / 4 on every corner and K_e = V B^T D B: V cancels.
+  Eigen::Matrix<double, 12, 12> A;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b)
+      A.block<3, 3>(3 * a, 3 * b) = 4.0 / density *
+                                    (m.lambda * g[a] * g[b].transpose() + m.mu * g[b] * g[a].transpose() +
+                                     m.mu * g[a].dot(g[b]) * Eigen::Matrix3d::Identity());
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 12, 12>>(A, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .maxCoeff();
+}
+
+namespace {
+
+// The exact, damped step of tet t, and the mass it lumps on each corner; step 0 if its volume is not
+// positive.
+struct TetStep {
+  double step = 0.0, corner_mass = 0.0;
+};
+TetStep exact_tet_step(std::span<const double> x, std::span<const int32_t> tet_nodes,
+                       std::span<const int32_t> material, std::span<const TetMaterial> materials,
+                       std::span<const double> density, size_t t) {
+  double c[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) c[a][i] = x[3 * static_cast<size_t>(tet_nodes[4 * t + a]) + i];
+  const size_t mat = static_cast<size_t>(material[t]);
+  const TetMaterial& m = materials[mat];
+  const double omega2 = tet_highest_omega2(c, m, density[mat]);
+  if (!(omega2 > 0.0)) return {};
+  return {viscous_stable_step(2.0 / std::sqrt(omega2), m.eta, m.lambda + 2.0 * m.mu),
+          density[mat] * tet_volume(c) / 4.0};
+}
+
+}  // namespace
+
+double tet_exact_stable_step(std::span<const double> x, std::span<const int32_t> tet_nodes,
+                             std::span<const int32_t> material, std::span<const TetMaterial> materials,
+                             std::span<const double> density, size_t begin, size_t end) {
+  double dt = std::numeric_limits<double>::infinity();
+  for (size_t t = begin; t < end; ++t) {
+    const TetStep s = exact_tet_step(x, tet_nodes, material, materials, density, t);
+    if (s.step > 0.0) dt = std::min(dt, s.step);
+  }
+  return dt;
+}
+
+void add_tet_node_stiffness(std::span<const double> x, std::span<const int32_t> tet_nodes,
+                            std::span<const int32_t> material, std::span<const TetMaterial> materials,
+                            std::span<const double> density, std::span<double> stiffness,
+                            std::span<const uint8_t> exact) {
+  for (size_t t = 0; t < tet_nodes.size() / 4; ++t) {
+    TetStep s = exact_tet_step(x, tet_nodes, material, materials, density, t);
+    if (!(s.step > 0.0)) continue;
+    if (!exact.empty() && !exact[t])
+      s.step = tet_damped_stable_step(x, tet_nodes, material, materials, density, t, t + 1);
+    const double k = 4.0 / (s.step * s.step) * s.corner_mass;
+    for (int a = 0; a < 4; ++a) stiffness[static_cast<size_t>(tet_nodes[4 * t + a])] += k;
+  }
+}
+
+MassScaling scale_masses_to_step(std::span<const double> stiffness, double step, std::span<double> mass,
+                                 std::span<double> inv_mass) {
+  MassScaling r;
+  for (size_t n = 0; n < mass.size(); ++n) {
+    const double needed = 0.25 * stiffness[n] * step * step;
+    if (!(mass[n] > 0.0) || needed <= mass[n]) continue;  // massless nodes only follow their BCs
+    const double factor = needed / mass[n];
+    if (factor > r.largest_factor) r.largest_factor = factor, r.largest_node = static_cast<int64_t>(n);
+    r.added += needed - mass[n];
+    ++r.scaled_nodes;
+    mass[n] = needed;
+    inv_mass[n] = 1.0 / needed;
+  }
+  return r;
+}
+
+double node_stable_step(std::span<const double> stiffness, std::span<const double> mass) {
+  double dt = std::numeric_limits<double>::infinity();
+  for (size_t n = 0; n < mass.size(); ++n)
+    if (stiffness[n] > 0.0 && mass[n] > 0.0) dt = std::min(dt, 2.0 * std::sqrt(mass[n] / stiffness[n]));
+  return dt;
+}
 
 double tet_stable_step(std::span<const double> x, std::span<const int32_t> tet_nodes,
                        std::span<const int32_t> material, std::span<const TetMaterial> materials,

@@ -44,4 +44,48 @@ double tet_damped_stable_step(std::span<const double> x, std::span<const int32_t
                               std::span<const int32_t> material, std::span<const TetMaterial> materials,
                               std::span<const double> density, size_t begin, size_t end);
 
+// The largest eigenvalue of M^-1 K_e for one tet (corners c, positively oriented) with its own lumped mass
+// rho V / 4 on each corner and K_e = V B^T D B, the Y3D law's tangent at rest [1/s^2]; 0 if V <= 0. This is
+// the tet's exact highest squared frequency, which h / c_p above only estimates: on the general tet of the
+// tests it is 2.15 x (2 c_p / h)^2, so a lone tet's true step is 1.47 x shorter than dt_e. In a continuous
+// mesh the assembled frequencies lie below the elements' (and h / c_p is the usual, adequate estimate); a
+// tet of private nodes (a fracture zone) vibrates at its own.
+double tet_highest_omega2(const double c[4][3], const TetMaterial& m, double density);
+
+// min over tets [begin, end) of their exact step 2 / sqrt(tet_highest_omega2), reduced by their damping as
+// tet_damped_stable_step does; +infinity when no tet has a positive volume.
+double tet_exact_stable_step(std::span<const double> x, std::span<const int32_t> tet_nodes,
+                             std::span<const int32_t> material, std::span<const TetMaterial> materials,
+                             std::span<const double> density, size_t begin, size_t end);
+
+// Per-node stiffness of the bound used with mass scaling: node n's highest frequency is taken as
+// omega_n^2 = K_n / m_n, where K_n sums what every element puts on the node. A tet contributes its exact
+// highest frequency (tet_highest_omega2, or the estimate 2 / dt_e; either reduced by its damping as above)
+// times the mass it lumps on each corner: K_n += omega_e^2 rho V / 4 on its 4 nodes. Heavier corners only
+// lower every Rayleigh quotient, so for a tet alone max_n K_n / m_n bounds its frequency for any masses >=
+// rho V / 4. stiffness: 1 per node, added to (the caller zeroes it); the joints and contact add theirs
+// (add_joint_node_stiffness, ContactSystem::node_stiffness) before scale_masses_to_step. exact: 1 per tet, 1
+// for the exact frequency (a tet of private nodes), 0 for the h / c_p estimate (a tet whose nodes are shared,
+// where the estimate is adequate for the assembled mesh); empty: all exact.
+void add_tet_node_stiffness(std::span<const double> x, std::span<const int32_t> tet_nodes,
+                            std::span<const int32_t> material, std::span<const TetMaterial> materials,
+                            std::span<const double> density, std::span<double> stiffness,
+                            std::span<const uint8_t> exact = {});
+
+// Selective mass scaling: every node whose own step 2 sqrt(m_n / K_n) is below `step` gets the mass that
+// brings it to `step`, m_n = K_n step^2 / 4; the others keep theirs. mass and inv_mass (1 per node) are
+// updated in place. Returns the mass added [kg] and the node with the largest factor m_new / m_old (-1 if
+// none changed).
+struct MassScaling {
+  double added = 0.0;       // [kg]
+  size_t scaled_nodes = 0;  // nodes made heavier
+  double largest_factor = 1.0;
+  int64_t largest_node = -1;
+};
+MassScaling scale_masses_to_step(std::span<const double> stiffness, double step, std::span<double> mass,
+                                 std::span<double> inv_mass);
+
+// min over nodes of 2 sqrt(m_n / K_n) (+infinity where K_n = 0 or m_n = 0).
+double node_stable_step(std::span<const double> stiffness, std::span<const double> mass);
+
 }  // namespace rift::kernels

@@ -168,12 +168,12 @@ void ContactSystem::find_bodies_and_boundary_tets() {
 // boundary face of a mesh of several bodies) pressed face to face has stiffness k_f = 8 p A^2 / (3 V)
 // (header), a third of it on each corner. A node's springs add up to K; with the other side moving too,
 // omega^2 <= 2 K / m, and the central difference is stable for dt <= 2 / omega = sqrt(2 m / K).
-void ContactSystem::estimate_stable_step() {
+void ContactSystem::node_stiffness(std::vector<double>& joint, std::vector<double>& outer) const {
   const Table& nodes = store_.table(solid::node_table);
   const auto x0 = nodes.span<const double>("x0");
-  const auto mass = nodes.span<const double>("mass");
   const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
-  std::vector<double> outer(nodes.size(), 0.0), joint(nodes.size(), 0.0);
+  outer.assign(nodes.size(), 0.0);
+  joint.assign(nodes.size(), 0.0);
   auto add_face = [&](std::vector<double>& stiffness, int32_t t, const int32_t corner[3]) {
     Corners c;
     tet_corners(x0, conn, static_cast<size_t>(t), c);
@@ -185,25 +185,30 @@ void ContactSystem::estimate_stable_step() {
     for (int i = 0; i < 3; ++i) stiffness[conn[4 * t + corner[i]]] += k / 3.0;
   };
   for (const auto& [t, f] : boundary_faces_) add_face(outer, t, kTetFaceCorners[f]);
-  if (store_.has(solid::joint_table)) {
-    const Table& joints = store_.table(solid::joint_table);
-    const auto jn = joints.span<const int32_t>("nodes");
-    const auto jt = joints.span<const int32_t>("tets");
-    for (size_t j = 0; j < joints.size(); ++j)
-      for (int s = 0; s < 2; ++s) {
-        const int32_t t = jt[2 * j + s];
-        int32_t corner[3] = {0, 1, 2};
-        for (int i = 0; i < 3; ++i)
-          for (int k = 0; k < 4; ++k)
-            if (conn[4 * t + k] == jn[6 * j + 3 * s + i]) corner[i] = k;
-        add_face(joint, t, corner);
-      }
-  }
+  if (!store_.has(solid::joint_table)) return;
+  const Table& joints = store_.table(solid::joint_table);
+  const auto jn = joints.span<const int32_t>("nodes");
+  const auto jt = joints.span<const int32_t>("tets");
+  for (size_t j = 0; j < joints.size(); ++j)
+    for (int s = 0; s < 2; ++s) {
+      const int32_t t = jt[2 * j + s];
+      int32_t corner[3] = {0, 1, 2};
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 4; ++k)
+          if (conn[4 * t + k] == jn[6 * j + 3 * s + i]) corner[i] = k;
+      add_face(joint, t, corner);
+    }
+}
+
+void ContactSystem::estimate_stable_step() {
+  const auto mass = store_.table(solid::node_table).span<const double>("mass");
+  std::vector<double> outer, joint;
+  node_stiffness(joint, outer);
   auto step = [&](double k, size_t n) {
     return k > 0 && mass[n] > 0 ? std::sqrt(2.0 * mass[n] / k) : INFINITY;
   };
   stable_step_ = joint_face_stable_step_ = outer_face_stable_step_ = INFINITY;
-  for (size_t n = 0; n < nodes.size(); ++n) {
+  for (size_t n = 0; n < mass.size(); ++n) {
     stable_step_ = std::min(stable_step_, step(outer[n] + joint[n], n));
     joint_face_stable_step_ = std::min(joint_face_stable_step_, step(joint[n], n));
     outer_face_stable_step_ = std::min(outer_face_stable_step_, step(outer[n], n));

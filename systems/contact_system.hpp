@@ -77,6 +77,12 @@ class ContactSystem : public System {
   double stable_step() const { return stable_step_; }
   double joint_face_stable_step() const { return joint_face_stable_step_; }
   double outer_face_stable_step() const { return outer_face_stable_step_; }
+  // The contact springs' stiffness on each node's row, K_n [N/m] (estimate_stable_step): of the faces of
+  // joints and of the outer faces; with the other side moving too, omega_n^2 <= 2 K_n / m_n. Sized to the
+  // node count.
+  void node_stiffness(std::vector<double>& joint_faces, std::vector<double>& outer_faces) const;
+  // The stable steps again, from the node masses as they are now (after mass scaling).
+  void update_stable_step() { estimate_stable_step(); }
   const kernels::ContactLaw& law() const { return law_; }
   double buffer() const { return buffer_; }
   size_t bodies() const { return bodies_; }

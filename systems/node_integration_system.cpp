@@ -20,6 +20,7 @@ NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoun
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
   contact_ = store_.table(solid::node_table).has("contact_force");
+  crack_ = store_.table(solid::node_table).has("crack_force");
   blocks_.resize((nodes + grain - 1) / grain);
 }
 
@@ -44,6 +45,7 @@ Access NodeIntegrationSystem::access() const {
     writes.push_back(col(E, "contact_work"));
   }
   if (!external_column_.empty()) reads.push_back(col(N, external_column_.c_str()));
+  if (crack_) reads.push_back(col(N, "crack_force"));
   if (damped_) writes.push_back(col(E, "damping"));
   return {reads, writes};
 }
@@ -70,7 +72,8 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       prescribed_,
       contact_ ? nodes.span<double>("contact_force") : std::span<double>{},
       mass_damping_(ctx.time),
-      external_column_.empty() ? std::span<const double>{} : nodes.span<double>(external_column_)};
+      external_column_.empty() ? std::span<const double>{} : nodes.span<double>(external_column_),
+      crack_ ? nodes.span<double>("crack_force") : std::span<double>{}};
   const Table& tets = store_.table(solid::tet_table);
   const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
   const Table& faces = store_.table(solid::face_table);
@@ -80,7 +83,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       {tets.span<double>("corner_force"), joints ? joints->span<double>("corner_force") : std::span<double>{},
        faces.span<double>("corner_force")},
       {0, tet_slots, tet_slots + joint_slots,
-       tet_slots + joint_slots + 3 * static_cast<int64_t>(faces.size())},
+       tet_slots + joint_slots + 3 * static_cast<int64_t>(faces.size())},  // crack faces have no slots
       nodes.span<int32_t>("slots"),
       store_.table(solid::slot_table).span<int32_t>("slot")};
   parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {

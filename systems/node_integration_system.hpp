@@ -2,7 +2,8 @@
 // The node pass: gathers every producer's corner forces, then advances velocities and positions
 // by central difference, holding constrained components at their prescribed velocity, and books the
 // work of internal and external forces over the step in the solid_energy table. With contact, the
-// per-node contact forces (solid_node.contact_force) join the internal forces.
+// per-node contact forces (solid_node.contact_force) join the internal forces, the pressed crack faces'
+// (solid_node.crack_force) the external ones.
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -38,6 +39,7 @@ class NodeIntegrationSystem : public System {
   size_t non_finite_ = 0;
   std::string external_column_;  // empty: none
   bool contact_ = false;         // solid_node.contact_force exists (a contact system gathers into it)
+  bool crack_ = false;  // solid_node.crack_force exists (the surface loads gather crack faces into it)
 };
 
 }  // namespace rift

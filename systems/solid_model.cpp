@@ -13,7 +13,8 @@ namespace rift {
 SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
     : store_(store), spec_(spec) {
   if (spec_.initial_stress) initial_stress_ = spec_.initial_stress->tensor();
-  const std::vector<uint8_t> zone = fracture_zone(mesh);
+  zone_ = fracture_zone(mesh);
+  const std::vector<uint8_t>& zone = zone_;
   for (uint8_t z : zone) zone_tets_ += z;
   const DiscontinuousMesh dm = make_discontinuous(mesh, [&](size_t e) { return zone[e] != 0; });
   build_nodes_and_tets(dm, mesh);
@@ -75,6 +76,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
         "solid: a fracture zone without solid.contact: the faces of broken joints will pass "
         "through each other; add a solid.contact section to make them touch");
   }
+  if (spec_.mass_scaling_step > 0.0) scale_masses();
   const size_t joints = joint_count();
   spdlog::info(
       "solid: {} tets ({} in the fracture zone, {:.1f} %), {} nodes, {} joints, {} loaded faces",
@@ -202,6 +204,12 @@ void SolidModel::summarize(nlohmann::json& summary) const {
   s["joint_stable_dt"] =
       std::isfinite(joint_stable_dt_) ? nlohmann::json(joint_stable_dt_) : nlohmann::json();
   s["critical_tet"] = critical_tet_;
+  if (spec_.mass_scaling_step > 0.0)
+    s["mass_scaling"] = {{"step", spec_.mass_scaling_step},
+                         {"scaled_nodes", mass_scaling_.scaled_nodes},
+                         {"added_mass", mass_scaling_.added},
+                         {"added_fraction", mass_scaling_.added / mass0_},
+                         {"largest_factor", mass_scaling_.largest_factor}};
   const SolidEnergies e = energies();
   s["energy"] = {{"kinetic", e.kinetic},
                  {"elastic", e.elastic},

@@ -15,6 +15,7 @@
 #include "engine/mesh/tet_mesh.hpp"
 #include "engine/model.hpp"
 #include "engine/scene/scene.hpp"
+#include "kernels/stable_step.hpp"
 #include "systems/contact_system.hpp"
 #include "systems/joint_force_system.hpp"
 #include "systems/node_integration_system.hpp"
@@ -80,6 +81,7 @@ class SolidModel : public Model {
   void apply_initial_cracks(const std::vector<uint8_t>& zone);  // zone: 1 per tet, in the fracture zone
   void add_crack_faces();  // two loaded faces per joint, pressed once the joint is broken
   void build_contact(const TetMesh& mesh);
+  void scale_masses();  // solid.mass_scaling_step: heavier nodes where the step is short, the per-node step
   std::optional<std::string> check_energy(const StepContext& after);
 
   Store& store_;
@@ -91,7 +93,10 @@ class SolidModel : public Model {
   size_t crack_face_begin_ = 0;  // loaded faces from here on are joint faces (2 per joint, in joint order)
   double stable_dt_ = 0.0, tet_stable_dt_ = 0.0, joint_stable_dt_ = 0.0;
   int64_t critical_tet_ = -1;
+  kernels::MassScaling mass_scaling_;  // what solid.mass_scaling_step added (nothing when off)
+  double mass0_ = 0.0;                 // the solid's mass before scaling [kg]
   size_t zone_tets_ = 0;
+  std::vector<uint8_t> zone_;  // 1 per tet: in the fracture zone, i.e. with nodes of its own
   double largest_energy_ = 0.0,
          energy_floor_ = 0.0;  // largest energy scale seen so far, for the energy guard
   std::unique_ptr<SurfaceLoadSystem> loads_;

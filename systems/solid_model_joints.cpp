@@ -270,9 +270,11 @@ namespace rift {
 
 // With solid.fracture.crack_pressure, every joint gets its two faces as loaded faces (face 2j + s is the
 // face of joint j on tets[s], oriented out of that tet), all tied to one pressure condition. The surface
-// load system presses only the faces of broken joints, so an intact joint's rows stay zero; their slots
-// are in every node's list from the start, and a break changes no slot.
+// load system presses only the faces of broken joints, so an intact joint's rows stay zero. They have no
+// force slots: the surface loads gather the pressed faces' corner forces into solid_node.crack_force,
+// which the node pass reads as an external force.
 void SolidModel::add_crack_faces() {
+  store_.table(solid::node_table).add<double>("crack_force", 3);
   const Table& joints = store_.table(solid::joint_table);
   const auto jn = joints.span<const int32_t>("nodes");
   const auto jt = joints.span<const int32_t>("tets");

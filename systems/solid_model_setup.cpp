@@ -243,14 +243,18 @@ size_t SolidModel::hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index)
 
 void SolidModel::build_force_slots() {
   // Each node lists the corner-force slots that act on it: 4 per tet, then 6 per joint, then 3 per loaded
-  // face. The order is fixed here, which fixes the floating-point sum in the node pass; the node pass
-  // relies on a node's slots being grouped by source (tets, joints, faces), which this order gives.
+  // face (not the crack faces). The order is fixed here, which fixes the floating-point sum in the node pass;
+  // the node pass relies on a node's slots being grouped by source (tets, joints, faces), which this order
+  // gives.
   Table& nodes = store_.table(solid::node_table);
   const auto tets = store_.table(solid::tet_table).span<const int32_t>("nodes");
   const auto joints = store_.has(solid::joint_table)
                           ? store_.table(solid::joint_table).span<const int32_t>("nodes")
                           : std::span<const int32_t>{};
-  const auto faces = store_.table(solid::face_table).span<const int32_t>("nodes");
+  // The crack faces (from crack_face_begin_ on) get no slots: the surface loads gather the pressed ones
+  // into solid_node.crack_force, so the node pass does not read a zero row for every intact joint's face.
+  const auto faces =
+      store_.table(solid::face_table).span<const int32_t>("nodes").first(3 * crack_face_begin_);
   std::vector<int32_t> count(nodes.size() + 1, 0);
   for (auto list : {tets, joints, faces})
     for (int32_t n : list) ++count[n + 1];
@@ -305,10 +309,15 @@ void SolidModel::compute_mass_and_stable_dt() {
     tet_materials_[m] = {lambda, mu, 2.0 * h_mean * s.damping * std::sqrt(s.young * s.density)};
     density[m] = s.density;
   }
-  // The stable step of the tets, and the tet that sets it (named in diagnostics).
+  // The stable step of the tets, and the tet that sets it (named in diagnostics). A tet of the fracture zone
+  // has nodes of its own and vibrates at its own highest frequency, which h / c_p overestimates the step of
+  // (1.6 x on the wedge scene's mesh: kernels/stable_step.hpp), so it gets its exact step; tets that share
+  // nodes keep the estimate, adequate for an assembled mesh (stable at 1.5 x it: docs/stability.md).
   tet_stable_dt_ = INFINITY;
   for (size_t e = 0; e < tets.size(); ++e) {
-    const double dt = kernels::tet_damped_stable_step(x0, conn, material, tet_materials_, density, e, e + 1);
+    const double dt =
+        zone_[e] ? kernels::tet_exact_stable_step(x0, conn, material, tet_materials_, density, e, e + 1)
+                 : kernels::tet_damped_stable_step(x0, conn, material, tet_materials_, density, e, e + 1);
     if (dt < tet_stable_dt_) tet_stable_dt_ = dt, critical_tet_ = static_cast<int64_t>(e);
   }
 }

@@ -174,6 +174,9 @@ struct SolidSpec {
   // c [1/s]: a drag -c m v on every node (dynamic relaxation to a static state), a function of time so that
   // a run can first settle under its initial loads and then go on undamped.
   TimeFunction mass_damping;
+  // Selective mass scaling [s], 0: off. Nodes whose own stable step (the per-node Gershgorin bound of tets,
+  // joints and contact) is below it get the mass that brings them to it; the step is then the per-node one.
+  double mass_scaling_step = 0.0;
   std::optional<FractureSpec> fracture;             // absent: continuous mesh, no joints
   std::optional<InitialStressSpec> initial_stress;  // absent: stress-free start
 };

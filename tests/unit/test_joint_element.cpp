@@ -295,6 +295,17 @@ TEST(JointForces, StableStepBoundsHighestFrequency) {
       for (int r = 0; r < 18; ++r) v[r] = w[r] / norm;
     }
     const double omega_bound = 2.0 / dt;
+    // The per-node bound of mass scaling (add_joint_node_stiffness): max_n K_n / m_n is the Gershgorin row
+    // sum over each corner's own mass, so it bounds the highest frequency for any masses and equals the
+    // joint's bound above when the masses are equal.
+    std::vector<double> stiffness(6, 0.0);
+    add_joint_node_stiffness(j.X, j.nodes, j.material, j.materials, j.broken, stiffness);
+    double node_bound = 0.0;
+    for (int n = 0; n < 6; ++n) node_bound = std::max(node_bound, stiffness[n] / mass[n]);
+    EXPECT_LE(lambda, node_bound * (1 + 1e-3));
+    if (equal) {
+      EXPECT_NEAR(node_bound, omega_bound * omega_bound, 1e-12 * node_bound);
+    }
     if (equal)
       EXPECT_NEAR(lambda, omega_bound * omega_bound, 1e-3 * omega_bound * omega_bound);
     else

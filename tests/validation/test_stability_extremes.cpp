@@ -176,9 +176,8 @@ TEST(StabilityExtremes, JointPenaltyThousandTimesYoung) {
 // --- geometry ------------------------------------------------------------------------------------------
 
 // A 2 x 2 x 2 Kuhn block of 1 cm cubes whose centre node is pushed towards x = 2 cm until one tet has a
-// 2 degree dihedral angle (bisection on the push). The stable step is then set by that sliver, and the
-// block, pushed at its xmax face at 0.1 m/s, runs stably.
-TEST(StabilityExtremes, SliverTetWithATwoDegreeDihedralAngle) {
+// 2 degree dihedral angle (bisection on the push), written to dir/sliver.msh; or the block unperturbed.
+void write_sliver_block(const test::TempDir& dir, bool perturbed) {
   TetMesh mesh = generate_lattice_box({2, 2, 2}, {0.02, 0.02, 0.02});
   const size_t centre = 1 + 3 * (1 + 3 * 1);
   const auto start = mesh.nodes[centre];
@@ -188,31 +187,99 @@ TEST(StabilityExtremes, SliverTetWithATwoDegreeDihedralAngle) {
     mesh.nodes[centre] = {start[0] + mid, start[1], start[2]};
     (measure_quality(mesh).min_dihedral_deg > 2.0 ? lo : hi) = mid;
   }
-  mesh.nodes[centre] = {start[0] + lo, start[1], start[2]};
+  mesh.nodes[centre] = {start[0] + (perturbed ? lo : 0.0), start[1], start[2]};
   const MeshQuality q = measure_quality(mesh);
-  ASSERT_NEAR(q.min_dihedral_deg, 2.0, 1e-6);
+  if (perturbed) {
+    ASSERT_NEAR(q.min_dihedral_deg, 2.0, 1e-6);
+  }
   ASSERT_EQ(q.inverted, 0u);
-
-  test::TempDir dir;
   write_msh(mesh, (dir / "sliver.msh").string());
+}
+
+// The block pushed at its xmax face at 0.1 m/s; solid_extra: more lines of the solid section.
+Scene sliver_scene(const test::TempDir& dir, const std::string& solid_extra = "") {
   const auto parsed = read_scene_text(
       "scene: {name: sliver}\ntime: {end: 2.0e-5}\nmesh: {file: sliver.msh}\n"
       "solid:\n  materials: [{name: limestone, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05}]\n"
       "  boundaries:\n    - {surface: xmin, type: fixed}\n"
-      "    - {surface: xmax, type: velocity, components: [x], direction: [-0.1, 0, 0]}\n",
+      "    - {surface: xmax, type: velocity, components: [x], direction: [-0.1, 0, 0]}\n" +
+          solid_extra,
       (dir / "sliver.yaml").string(), dir.path().string());
-  ASSERT_TRUE(parsed.scene) << parsed.errors.front().format();
-  const double with_sliver = stable_dt(*parsed.scene);
-  // The same block unperturbed: its step is the sliver's times the ratio of smallest heights, > 10.
-  mesh.nodes[centre] = start;
-  write_msh(mesh, (dir / "sliver.msh").string());
-  const double without = stable_dt(*parsed.scene);
+  if (!parsed.scene) throw Error(parsed.errors.front().format());
+  return *parsed.scene;
+}
+
+// The stable step is then set by the sliver, and the block runs stably.
+TEST(StabilityExtremes, SliverTetWithATwoDegreeDihedralAngle) {
+  test::TempDir dir;
+  write_sliver_block(dir, false);
+  const double without = stable_dt(sliver_scene(dir));
+  write_sliver_block(dir, true);
+  const double with_sliver = stable_dt(sliver_scene(dir));
+  // The unperturbed block's step is the sliver's times the ratio of smallest heights, > 10.
   EXPECT_GT(without / with_sliver, 10.0);
   std::printf("sliver: stable step %.4g s, %.1f x below the unperturbed block's\n", with_sliver,
               without / with_sliver);
-  mesh.nodes[centre] = {start[0] + lo, start[1], start[2]};
-  write_msh(mesh, (dir / "sliver.msh").string());
-  expect_stable(run_case(*parsed.scene), "sliver tet, 2 degree dihedral");
+  expect_stable(run_case(sliver_scene(dir)), "sliver tet, 2 degree dihedral");
+}
+
+// Mass scaling to the unperturbed block's step (solid.mass_scaling_step): the sliver's corners get heavier,
+// the step is the target exactly, and the run is stable with the energy balance bounded. The block shares
+// its nodes, so the per-node bound is a mass-weighted mean of its tets' estimates, not a bound on the
+// assembly: at 1.5 x the scaled step the run goes unstable and the energy guard stops it, naming the step.
+// (Mass scaling is meant for fracture zones, where every node has one tet: the jointed case below.)
+TEST(StabilityExtremes, MassScalingLiftsTheSliversStep) {
+  test::TempDir dir;
+  write_sliver_block(dir, false);
+  const double target = 0.9 * stable_dt(sliver_scene(dir));
+  write_sliver_block(dir, true);
+  const std::string scaling = fmt::format("  mass_scaling_step: {:.17g}\n", target);
+  const Scene scaled = sliver_scene(dir, scaling);
+  const nlohmann::json s = solid_summary(scaled);
+  EXPECT_DOUBLE_EQ(s["stable_dt"].get<double>(), target);
+  const auto& m = s["mass_scaling"];
+  EXPECT_GT(m["scaled_nodes"].get<size_t>(), 0u);
+  EXPECT_LT(m["scaled_nodes"].get<size_t>(), s["nodes"].get<size_t>());
+  std::printf(
+      "sliver, mass scaling to %.4g s: %zu of %zu nodes heavier, +%.3g %% of the mass, up to %.1f x\n",
+      target, m["scaled_nodes"].get<size_t>(), s["nodes"].get<size_t>(),
+      100 * m["added_fraction"].get<double>(), m["largest_factor"].get<double>());
+  expect_stable(run_case(scaled), "sliver with mass scaling");
+  Scene fast = sliver_scene(dir, scaling);
+  fast.time.dt = 1.5 * target;
+  fast.time.allow_unstable_dt = true;
+  const Outcome r = run_case(fast);
+  EXPECT_TRUE(r.finite);
+  if (!r.completed) {
+    EXPECT_NE(r.diagnosis.find("a step above the stable one"), std::string::npos) << r.diagnosis;
+  }
+  std::printf("sliver with mass scaling at 1.5 x: %s\n", r.completed ? "stable" : r.diagnosis.c_str());
+}
+
+// The jointed patch block (private nodes, joints at p = 100 E set the step) with mass scaling to twice its
+// step. The scaled step is the per-node bound, sharper than the unscaled one (which assumes three of the
+// stiffest joints at the lightest node): the run is stable at 0.9 and 1.1 x it, and measured unstable from
+// 1.2 x on; at 1.5 x the energy guard stops it and names the step.
+TEST(StabilityExtremes, MassScalingInAFractureZoneAtPointNineAndOnePointFiveTimesTheScaledStep) {
+  const double stable = stable_dt(validation_scene("patch_uniaxial.yaml"));
+  const std::string scaling = fmt::format("solid.mass_scaling_step={:.17g}", 2.0 * stable);
+  const nlohmann::json s = solid_summary(validation_scene("patch_uniaxial.yaml", {scaling}));
+  EXPECT_DOUBLE_EQ(s["stable_dt"].get<double>(), 2.0 * stable);
+  std::printf("jointed patch, mass scaling to 2 x its step: %zu of %zu nodes heavier, +%.3g %% of the mass\n",
+              s["mass_scaling"]["scaled_nodes"].get<size_t>(), s["nodes"].get<size_t>(),
+              100 * s["mass_scaling"]["added_fraction"].get<double>());
+  auto at = [&](double factor) {
+    return run_case(validation_scene(
+        "patch_uniaxial.yaml", {scaling, dt_override(factor * 2.0 * stable), "time.allow_unstable_dt=true",
+                                "time.end=" + fmt::format("{:.17g}", 1200 * stable)}));
+  };
+  for (double factor : {0.9, 1.1})
+    expect_stable(at(factor),
+                  fmt::format("jointed patch, mass scaled, {} x the scaled step", factor).c_str());
+  const Outcome fast = at(1.5);
+  EXPECT_TRUE(fast.finite);
+  EXPECT_FALSE(fast.completed);
+  EXPECT_NE(fast.diagnosis.find("a step above the stable one"), std::string::npos) << fast.diagnosis;
 }
 
 // --- loads ---------------------------------------------------------------------------------------------

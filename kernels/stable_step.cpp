@@ -5,8 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "kernels/tet_intersection.hpp"
-
 namespace rift::kernels {
 
 namespace {
@@ -71,50 +69,28 @@ double tet_highest_omega2(const double c[4][3], const TetMaterial& m, double den
       .maxCoeff();
 }
 
-namespace {
-
-// The exact, damped step of tet t, and the mass it lumps on each corner; step 0 if its volume is not
-// positive.
-struct TetStep {
-  double step = 0.0, corner_mass = 0.0;
-};
-TetStep exact_tet_step(std::span<const double> x, std::span<const int32_t> tet_nodes,
-                       std::span<const int32_t> material, std::span<const TetMaterial> materials,
-                       std::span<const double> density, size_t t) {
-  double c[4][3];
-  for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < 3; ++i) c[a][i] = x[3 * static_cast<size_t>(tet_nodes[4 * t + a]) + i];
-  const size_t mat = static_cast<size_t>(material[t]);
-  const TetMaterial& m = materials[mat];
-  const double omega2 = tet_highest_omega2(c, m, density[mat]);
-  if (!(omega2 > 0.0)) return {};
-  return {viscous_stable_step(2.0 / std::sqrt(omega2), m.eta, m.lambda + 2.0 * m.mu),
-          density[mat] * tet_volume(c) / 4.0};
-}
-
-}  // namespace
-
 double tet_exact_stable_step(std::span<const double> x, std::span<const int32_t> tet_nodes,
                              std::span<const int32_t> material, std::span<const TetMaterial> materials,
                              std::span<const double> density, size_t begin, size_t end) {
   double dt = std::numeric_limits<double>::infinity();
   for (size_t t = begin; t < end; ++t) {
-    const TetStep s = exact_tet_step(x, tet_nodes, material, materials, density, t);
-    if (s.step > 0.0) dt = std::min(dt, s.step);
+    double c[4][3];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) c[a][i] = x[3 * static_cast<size_t>(tet_nodes[4 * t + a]) + i];
+    const size_t mat = static_cast<size_t>(material[t]);
+    const TetMaterial& m = materials[mat];
+    const double omega2 = tet_highest_omega2(c, m, density[mat]);
+    if (omega2 > 0.0)
+      dt = std::min(dt, viscous_stable_step(2.0 / std::sqrt(omega2), m.eta, m.lambda + 2.0 * m.mu));
   }
   return dt;
 }
 
-void add_tet_node_stiffness(std::span<const double> x, std::span<const int32_t> tet_nodes,
-                            std::span<const int32_t> material, std::span<const TetMaterial> materials,
-                            std::span<const double> density, std::span<double> stiffness,
-                            std::span<const uint8_t> exact) {
-  for (size_t t = 0; t < tet_nodes.size() / 4; ++t) {
-    TetStep s = exact_tet_step(x, tet_nodes, material, materials, density, t);
-    if (!(s.step > 0.0)) continue;
-    if (!exact.empty() && !exact[t])
-      s.step = tet_damped_stable_step(x, tet_nodes, material, materials, density, t, t + 1);
-    const double k = 4.0 / (s.step * s.step) * s.corner_mass;
+void add_tet_node_stiffness(std::span<const int32_t> tet_nodes, std::span<const double> tet_step,
+                            std::span<const double> tet_mass, std::span<double> stiffness) {
+  for (size_t t = 0; t < tet_step.size(); ++t) {
+    if (!std::isfinite(tet_step[t])) continue;                   // degenerate: no step, no stiffness
+    const double k = tet_mass[t] / (tet_step[t] * tet_step[t]);  // (2 / dt)^2 x (rho V / 4)
     for (int a = 0; a < 4; ++a) stiffness[static_cast<size_t>(tet_nodes[4 * t + a])] += k;
   }
 }

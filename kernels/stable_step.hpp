@@ -59,18 +59,16 @@ double tet_exact_stable_step(std::span<const double> x, std::span<const int32_t>
                              std::span<const double> density, size_t begin, size_t end);
 
 // Per-node stiffness of the bound used with mass scaling: node n's highest frequency is taken as
-// omega_n^2 = K_n / m_n, where K_n sums what every element puts on the node. A tet contributes its exact
-// highest frequency (tet_highest_omega2, or the estimate 2 / dt_e; either reduced by its damping as above)
-// times the mass it lumps on each corner: K_n += omega_e^2 rho V / 4 on its 4 nodes. Heavier corners only
-// lower every Rayleigh quotient, so for a tet alone max_n K_n / m_n bounds its frequency for any masses >=
-// rho V / 4. stiffness: 1 per node, added to (the caller zeroes it); the joints and contact add theirs
-// (add_joint_node_stiffness, ContactSystem::node_stiffness) before scale_masses_to_step. exact: 1 per tet, 1
-// for the exact frequency (a tet of private nodes), 0 for the h / c_p estimate (a tet whose nodes are shared,
-// where the estimate is adequate for the assembled mesh); empty: all exact.
-void add_tet_node_stiffness(std::span<const double> x, std::span<const int32_t> tet_nodes,
-                            std::span<const int32_t> material, std::span<const TetMaterial> materials,
-                            std::span<const double> density, std::span<double> stiffness,
-                            std::span<const uint8_t> exact = {});
+// omega_n^2 = K_n / m_n, where K_n sums what every element puts on the node. A tet of step dt (the one the
+// solid's stable step uses: exact for a tet of private nodes, the h / c_p estimate for one of shared nodes)
+// contributes omega_e^2 = (2 / dt)^2 times the mass it lumps on each corner, rho V / 4: K_n += rho V / dt^2
+// on its 4 nodes. Heavier corners only lower every Rayleigh quotient, so for a tet alone max_n K_n / m_n
+// bounds its frequency for any masses >= rho V / 4. tet_step, tet_mass (rho V): 1 per tet; a tet whose step
+// is not finite (degenerate) adds nothing. stiffness: 1 per node, added to (the caller zeroes it); the
+// joints and contact add theirs (add_joint_node_stiffness, ContactSystem::node_stiffness) before
+// scale_masses_to_step.
+void add_tet_node_stiffness(std::span<const int32_t> tet_nodes, std::span<const double> tet_step,
+                            std::span<const double> tet_mass, std::span<double> stiffness);
 
 // Selective mass scaling: every node whose own step 2 sqrt(m_n / K_n) is below `step` gets the mass that
 // brings it to `step`, m_n = K_n step^2 / 4; the others keep theirs. mass and inv_mass (1 per node) are

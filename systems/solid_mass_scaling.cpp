@@ -19,15 +19,16 @@ void SolidModel::scale_masses() {
   const auto x0 = nodes.span<const double>("x0");
   auto mass = nodes.span<double>("mass");
   auto inv_mass = nodes.span<double>("inv_mass");
-  std::vector<double> density(spec_.materials.size());
-  for (size_t m = 0; m < density.size(); ++m) density[m] = spec_.materials[m].density;
 
   // Per node, the row sums of the Gershgorin bound (kernels/stable_step.hpp): its tet, its joints, and the
   // contact springs, which on a joint's face replace the joint's once it breaks (the larger of the two
   // counts, as in the global step) and on outer faces add. omega_n^2 = K_n / m_n.
-  std::vector<double> stiffness(nodes.size(), 0.0);
-  kernels::add_tet_node_stiffness(x0, tets.span<const int32_t>("nodes"), tets.span<const int32_t>("material"),
-                                  tet_materials_, density, stiffness, zone_);
+  std::vector<double> stiffness(nodes.size(), 0.0), tet_mass(tets.size());
+  const auto volume = tets.span<const double>("volume0");
+  const auto material = tets.span<const int32_t>("material");
+  for (size_t e = 0; e < tets.size(); ++e)
+    tet_mass[e] = spec_.materials[static_cast<size_t>(material[e])].density * volume[e];
+  kernels::add_tet_node_stiffness(tets.span<const int32_t>("nodes"), tet_steps_, tet_mass, stiffness);
   std::vector<double> joint(nodes.size(), 0.0);
   if (joint_forces_) {
     const Table& joints = store_.table(solid::joint_table);

@@ -14,9 +14,8 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
     : store_(store), spec_(spec) {
   if (spec_.initial_stress) initial_stress_ = spec_.initial_stress->tensor();
   zone_ = fracture_zone(mesh);
-  const std::vector<uint8_t>& zone = zone_;
-  for (uint8_t z : zone) zone_tets_ += z;
-  const DiscontinuousMesh dm = make_discontinuous(mesh, [&](size_t e) { return zone[e] != 0; });
+  for (uint8_t z : zone_) zone_tets_ += z;
+  const DiscontinuousMesh dm = make_discontinuous(mesh, [&](size_t e) { return zone_[e] != 0; });
   build_nodes_and_tets(dm, mesh);
   assign_materials(mesh);
   apply_initial_velocity(mesh);
@@ -27,7 +26,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   build_force_slots();
   compute_mass_and_stable_dt();
   create_bookkeeping_tables();
-  if (spec_.fracture) apply_initial_cracks(zone);
+  if (spec_.fracture) apply_initial_cracks(zone_);
   if (spec_.contact) build_contact(mesh);
   store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
 

@@ -313,11 +313,14 @@ void SolidModel::compute_mass_and_stable_dt() {
   // has nodes of its own and vibrates at its own highest frequency, which h / c_p overestimates the step of
   // (1.6 x on the wedge scene's mesh: kernels/stable_step.hpp), so it gets its exact step; tets that share
   // nodes keep the estimate, adequate for an assembled mesh (stable at 1.5 x it: docs/stability.md).
+  // Each tet's step is kept for mass scaling's per-node bound.
   tet_stable_dt_ = INFINITY;
+  tet_steps_.resize(tets.size());
   for (size_t e = 0; e < tets.size(); ++e) {
     const double dt =
         zone_[e] ? kernels::tet_exact_stable_step(x0, conn, material, tet_materials_, density, e, e + 1)
                  : kernels::tet_damped_stable_step(x0, conn, material, tet_materials_, density, e, e + 1);
+    tet_steps_[e] = dt;
     if (dt < tet_stable_dt_) tet_stable_dt_ = dt, critical_tet_ = static_cast<int64_t>(e);
   }
 }

@@ -72,14 +72,16 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
   // the sum must not depend on the threads. The pressed set only grows, so clearing its nodes first leaves
   // every other node at zero. Cost: 18 values per broken joint.
   auto node_force = store_.table(solid::node_table).span<double>("crack_force");
-  for (int pass = 0; pass < 2; ++pass)
+  auto each_pressed_corner = [&](auto visit) {  // visit(force row of the node, corner force)
     for (const int32_t j : broken)
       for (size_t f = crack_face_begin_ + 2 * static_cast<size_t>(j), e = f + 2; f < e; ++f)
-        for (int k = 0; k < 3; ++k) {
-          double* to = &node_force[3 * static_cast<size_t>(nodes[3 * f + k])];
-          const double* from = &force[9 * f + 3 * k];
-          for (int c = 0; c < 3; ++c) to[c] = pass == 0 ? 0.0 : to[c] + from[c];
-        }
+        for (int k = 0; k < 3; ++k)
+          visit(&node_force[3 * static_cast<size_t>(nodes[3 * f + k])], &force[9 * f + 3 * k]);
+  };
+  each_pressed_corner([](double* to, const double*) { to[0] = to[1] = to[2] = 0.0; });
+  each_pressed_corner([](double* to, const double* from) {
+    for (int c = 0; c < 3; ++c) to[c] += from[c];
+  });
 }
 
 }  // namespace rift

@@ -25,10 +25,13 @@ std::vector<double> tet_corner_masses(Mesh& m) {
   return std::vector<double>(4, kDensity * m.volume0[0] / 4.0);
 }
 
+// The tet as a fracture zone's: its exact step, its mass rho V.
 std::vector<double> tet_node_stiffness(const Mesh& m) {
   std::vector<double> k(4, 0.0);
   const std::vector<double> density{kDensity};
-  add_tet_node_stiffness(m.x0, m.tets, m.material, m.materials, density, k);
+  const std::vector<double> step{tet_exact_stable_step(m.x0, m.tets, m.material, m.materials, density, 0, 1)};
+  const std::vector<double> mass{kDensity * m.volume0[0]};
+  add_tet_node_stiffness(m.tets, step, mass, k);
   return k;
 }
 

@@ -63,7 +63,7 @@ inline void point_jump(const JointGeometry& g, const std::array<double, 3>& N, d
 }
 
 void write_zero_force(const JointArgs& a, size_t j) {
-  std::fill_n(&a.corner_force[18 * j], 18, 0.0);
+  std::fill_n(&a.corner_force[9 * j], 9, 0.0);
   if (!a.stored_energy.empty()) a.stored_energy[j] = 0.0;
 }
 
@@ -150,12 +150,9 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
       write_optional(a.damage, j, 1.0);
       continue;
     }
-    double* f = &a.corner_force[18 * j];
+    double* f = &a.corner_force[9 * j];  // side B; side A is minus this
     for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 3; ++c) {
-        f[3 * i + c] = -F[i][c];
-        f[3 * (i + 3) + c] = F[i][c];
-      }
+      for (int c = 0; c < 3; ++c) f[3 * i + c] = F[i][c];
     write_optional(a.damage, j, damage);
     write_optional(a.stored_energy, j, energy);
   }

@@ -13,7 +13,7 @@
 // s = |sv|; the law gives sigma, tau and the traction t = sigma n + tau sv / s (no shear term when s = 0).
 // Corner forces: f_{A,i} = -sum_q w_q A N_i t,  f_{B,i} = +sum_q w_q A N_i t, so tractions resist the
 // separation (sigma > 0 pulls A back towards B). Each facing pair gets the same number with both signs, so
-// the six forces sum to zero up to the round-off of the summation alone. Their moment, -sum_i d_i x F_i, is
+// the six forces sum to zero exactly; only f_B is written (corner_force). Their moment, -sum_i d_i x F_i, is
 // not zero once the joint is open (the pair members sit d_i apart), as in Y. The geometric terms of the
 // variation (dn/dx, dA/dx, dh/dx) are not included, as in Y: the forces are the tractions lumped, not the
 // exact gradient of the stored energy when the mid-surface stretches or turns under load.
@@ -55,9 +55,11 @@ struct JointArgs {
   std::span<const JointMaterial> materials;  // preconditions: p, f_t, c > 0, G_I, G_II > 0, tan(phi) >= 0
   const JointRule* rule;                     // joint_rule(3) or joint_rule(7)
   Softening softening;
-  std::span<double> d_max;         // in/out, rule->points per joint: the D_max history, starts at 0
-  std::span<uint8_t> broken;       // in/out, 1 per joint: a JointBreakMode value; nonzero joints are skipped
-  std::span<double> corner_force;  // out, 18 per joint: corners 0..5, x y z each
+  std::span<double> d_max;    // in/out, rule->points per joint: the D_max history, starts at 0
+  std::span<uint8_t> broken;  // in/out, 1 per joint: a JointBreakMode value; nonzero joints are skipped
+  // out, 9 per joint: x y z of the forces on the side-B corners 3, 4, 5; side-A corner i carries exactly
+  // minus that of corner i + 3 (see above), so it is not stored (the node pass reads it negated).
+  std::span<double> corner_force;
   // Optional outputs, 1 per joint; an empty span skips that output.
   std::span<double> opening;        // weighted mean of o over the points [m] (also for broken joints)
   std::span<double> slip;           // weighted mean of s [m] (also for broken joints)

@@ -258,15 +258,15 @@ void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointS
   if (!a.slip.empty()) simd::store1(t.mean_s, a.slip.data() + j0, count);
   const V4 breaks = _mm256_cmp_pd(t.failed, set1(a.rule->fail_count), _CMP_GE_OQ);
   const V4 intact = _mm256_xor_pd(breaks, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
-  V4 f[18];
+  V4 f[9];  // side B's corners; side A's are minus these and not stored
   for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c) {
-      f[3 * i + c] = simd::keep(intact, -t.F[i][c]);
-      f[9 + 3 * i + c] = simd::keep(intact, t.F[i][c]);
-    }
-  double* out = a.corner_force.data() + 18 * j0;
-  for (int b = 0; b < 4; ++b) simd::store_block4(f + 4 * b, out + 4 * b, 18, count);
-  simd::store_pair(f[16], f[17], out + 16, 18, count);
+    for (int c = 0; c < 3; ++c) f[3 * i + c] = simd::keep(intact, t.F[i][c]);
+  double* out = a.corner_force.data() + 9 * j0;
+  simd::store_block4(f, out, 9, count);
+  simd::store_block4(f + 4, out + 4, 9, count);
+  alignas(32) double last[4];
+  _mm256_store_pd(last, f[8]);
+  for (int l = 0; l < count; ++l) out[9 * l + 8] = last[l];
   if (!a.damage.empty()) simd::store1(simd::select(breaks, set1(1.0), t.damage), a.damage.data() + j0, count);
   if (!a.stored_energy.empty())
     simd::store1(simd::keep(intact, t.energy), a.stored_energy.data() + j0, count);

@@ -1,5 +1,6 @@
 #include "kernels/node_integration.hpp"
 
+#include <bit>
 #include <cmath>
 
 namespace rift::kernels {
@@ -16,7 +17,8 @@ constexpr size_t kPrefetchAhead = 8;
   for (int32_t k = s.node_range[2 * n]; k < s.node_range[2 * n + 1]; ++k) {
     const int64_t slot = s.slots[k];
     const int src = (slot >= s.first_slot[1]) + (slot >= s.first_slot[2]);
-    const double* p = s.source[src].data() + 3 * (slot - s.first_slot[src]);
+    const int64_t row = (slot - s.first_slot[src]) >> (src == 1);  // source 1: pairs share a row
+    const double* p = s.source[src].data() + 3 * row;
     __builtin_prefetch(p);
     __builtin_prefetch(p + 2);  // the record may straddle two lines
   }
@@ -38,11 +40,22 @@ NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size
     for (int src = 0; src < 3; ++src) {
       double fx = 0.0, fy = 0.0, fz = 0.0;
       const double* base = s.source[src].data();
-      for (; k < k_end && s.slots[k] < s.first_slot[src + 1]; ++k) {
-        const double* p = base + 3 * (s.slots[k] - s.first_slot[src]);
-        fx += p[0];
-        fy += p[1];
-        fz += p[2];
+      if (src == 1) {  // pairs: row e >> 1, negated when e is odd
+        for (; k < k_end && s.slots[k] < s.first_slot[2]; ++k) {
+          const int64_t e = s.slots[k] - s.first_slot[1];
+          const double* p = base + 3 * (e >> 1);
+          const uint64_t sign = static_cast<uint64_t>(e & 1) << 63;  // negation flips the sign bit only
+          fx += std::bit_cast<double>(std::bit_cast<uint64_t>(p[0]) ^ sign);
+          fy += std::bit_cast<double>(std::bit_cast<uint64_t>(p[1]) ^ sign);
+          fz += std::bit_cast<double>(std::bit_cast<uint64_t>(p[2]) ^ sign);
+        }
+      } else {
+        for (; k < k_end && s.slots[k] < s.first_slot[src + 1]; ++k) {
+          const double* p = base + 3 * (s.slots[k] - s.first_slot[src]);
+          fx += p[0];
+          fy += p[1];
+          fz += p[2];
+        }
       }
       f[src][0] = fx, f[src][1] = fy, f[src][2] = fz;
     }

@@ -14,8 +14,12 @@
 namespace rift::kernels {
 
 // Corner forces of up to three producers, seen as one list of slots: source k covers the slots
-// [first_slot[k], first_slot[k + 1]) and holds 3 doubles per slot (first_slot[3] = total slot count).
-// Sources 0 and 1 are internal forces (tets, joints), source 2 external (loaded faces).
+// [first_slot[k], first_slot[k + 1]) (first_slot[3] = total slot count). Sources 0 and 1 are internal
+// forces (tets, joints), source 2 external (loaded faces).
+// Sources 0 and 2 hold 3 doubles per slot. Source 1 holds one 3-vector per pair of slots, for forces that
+// come in equal and opposite pairs (a joint's facing corners): slot first_slot[1] + 2 r reads row r as it
+// is, slot first_slot[1] + 2 r + 1 reads it negated. A joint then writes and the pass reads 9 doubles
+// instead of 18; negation is exact, so the sums are those of a row of 18.
 struct ForceSlots {
   std::span<const double> source[3];
   int64_t first_slot[4];

@@ -43,7 +43,7 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
   joints.add<int32_t>("material");
   joints.add<double>("d_max", points);
   joints.add<uint8_t>("broken");
-  joints.add<double>("corner_force", 18);
+  joints.add<double>("corner_force", 9);  // side B's corners; side A's are minus these
   joints.add<double>("opening");
   joints.add<double>("slip");
   joints.add<double>("damage");

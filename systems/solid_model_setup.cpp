@@ -241,6 +241,15 @@ size_t SolidModel::hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index)
   return count;
 }
 
+namespace {
+// Corner k = 6 j + i of the joints as a slot of kernels::ForceSlots's paired source: joint j stores the
+// forces on its side-B corners as rows 3 j + 0..2, and side-A corner i reads row 3 j + i negated.
+size_t joint_corner_slot(size_t k) {
+  const size_t j = k / 6, i = k % 6;
+  return 2 * (3 * j + i % 3) + (i < 3 ? 1 : 0);
+}
+}  // namespace
+
 void SolidModel::build_force_slots() {
   // Each node lists the corner-force slots that act on it: 4 per tet, then 6 per joint, then 3 per loaded
   // face (not the crack faces). The order is fixed here, which fixes the floating-point sum in the node pass;
@@ -267,7 +276,9 @@ void SolidModel::build_force_slots() {
   std::vector<int32_t> next(count.begin(), count.end() - 1);
   int32_t first = 0;
   for (auto list : {tets, joints, faces}) {
-    for (size_t k = 0; k < list.size(); ++k) slot[next[list[k]]++] = first + static_cast<int32_t>(k);
+    const bool paired = list.data() == joints.data() && !joints.empty();
+    for (size_t k = 0; k < list.size(); ++k)
+      slot[next[list[k]]++] = first + static_cast<int32_t>(paired ? joint_corner_slot(k) : k);
     first += static_cast<int32_t>(list.size());
   }
   for (size_t n = 0; n < nodes.size(); ++n) {

@@ -22,12 +22,14 @@ inline constexpr const char* contact_state_table = "solid_contact_state";
 //            corner_force (12), stress (6), energy (1), viscous_power (1)
 // solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),
 //            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear, 3 initial crack),
-//            corner_force (18), opening, slip, damage, stored_energy (1 each), initial_offset (3, in-situ
-//            state; 0 without one) contact_force (3, with contact only: the contact forces of the step,
-//            gathered per node), x_detect (3, with contact only: positions at the last contact detection)
+//            corner_force (9: the forces on side B's corners; side A's are minus these), opening, slip,
+//            damage, stored_energy (1 each), initial_offset (3, in-situ state; 0 without one) contact_force
+//            (3, with contact only: the contact forces of the step, gathered per node), x_detect (3, with
+//            contact only: positions at the last contact detection)
 // solid_load_face: nodes (i32 x3), load (i32), corner_force (9)
 // solid_force_slot: slot (i32): the corner-force slots of every node, grouped by node: tet corners
-//            [0, 4 T), then joint corners [4 T, 4 T + 6 J), then loaded-face corners
+//            [0, 4 T), then joint corners [4 T, 4 T + 6 J) (corner i of joint j at 4 T + 2 (3 j + i mod 3)
+//            + (i < 3): kernels::ForceSlots's pairs), then loaded-face corners
 // solid_fracture_event: one row per broken joint, in the order they broke: step (i64), time, joint (i32),
 //            mode (u8, as broken), centroid (3), normal (3), area
 // solid_energy: one row of running integrals [J]: external_work (loads, gravity, prescribed motion),

@@ -56,7 +56,8 @@ struct OneJoint {
   std::vector<JointMaterial> materials;
   const JointRule* rule;
   Softening softening;
-  std::vector<double> d_max, force = std::vector<double>(18, 0.0);
+  // force: all six corners' forces, x y z each; the kernel writes side B's (row) and side A's are minus them.
+  std::vector<double> d_max, row = std::vector<double>(9, 0.0), force = std::vector<double>(18, 0.0);
   std::vector<double> opening{0}, slip{0}, damage{0}, energy{0};
   std::vector<uint8_t> broken{0};
   std::vector<JointBreak> breaks = std::vector<JointBreak>(4);
@@ -68,10 +69,13 @@ struct OneJoint {
       : materials{m}, rule(&joint_rule(points)), softening(s), d_max(static_cast<size_t>(points), 0.0) {}
 
   JointArgs args() {
-    return {x,     nodes,   material, materials, rule,   softening, d_max,        broken,
-            force, opening, slip,     damage,    energy, breaks,    &break_count, offset};
+    return {x,   nodes,   material, materials, rule,   softening, d_max,        broken,
+            row, opening, slip,     damage,    energy, breaks,    &break_count, offset};
   }
-  void run() { status += g_kernel(args(), 0, 1); }
+  void run() {
+    status += g_kernel(args(), 0, 1);
+    for (int k = 0; k < 9; ++k) force[k] = -row[k], force[9 + k] = row[k];
+  }
   // Side A at reference + (sx, sy, o); side B at reference. Then evaluate.
   void jump(double sx, double sy, double o) {
     for (int i = 0; i < 3; ++i) {

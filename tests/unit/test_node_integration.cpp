@@ -13,7 +13,8 @@ namespace rift::kernels {
 namespace {
 
 // Random nodes with 1 tet slot, 0-3 joint slots and 0-1 face slots each (grouped by source, as set-up
-// builds them), random forces, masses, and a few held components (fixed or driven).
+// builds them; joint slots are pairs over rows of joint_force, ForceSlots), random forces, masses, and a few
+// held components (fixed or driven).
 struct Problem {
   size_t nodes = 0;
   std::vector<double> tet_force, joint_force, face_force;
@@ -69,10 +70,15 @@ struct Problem {
             node_range,
             slots};
   }
-  const double* slot_force(int32_t slot) const {
-    if (slot < first_slot[1]) return &tet_force[3 * static_cast<size_t>(slot)];
-    if (slot < first_slot[2]) return &joint_force[3 * static_cast<size_t>(slot - first_slot[1])];
-    return &face_force[3 * static_cast<size_t>(slot - first_slot[2])];
+  // Component c of the force in a slot; joint slots come in pairs (ForceSlots): 2 r reads row r, 2 r + 1
+  // its negative.
+  double slot_force(int32_t slot, int c) const {
+    if (slot < first_slot[1]) return tet_force[3 * static_cast<size_t>(slot) + c];
+    if (slot < first_slot[2]) {
+      const auto e = static_cast<size_t>(slot - first_slot[1]);
+      return (e % 2 ? -1.0 : 1.0) * joint_force[3 * (e / 2) + c];
+    }
+    return face_force[3 * static_cast<size_t>(slot - first_slot[2]) + c];
   }
 };
 
@@ -89,7 +95,7 @@ TEST(NodeIntegration, MatchesDirectEvaluation) {
       for (int32_t k = p.node_range[2 * n]; k < p.node_range[2 * n + 1]; ++k) {
         const int32_t slot = p.slots[k];
         const int src = (slot >= p.first_slot[1]) + (slot >= p.first_slot[2]);
-        by_source[src] += p.slot_force(slot)[c];
+        by_source[src] += p.slot_force(slot, c);
       }
       const size_t i = 3 * n + c;
       const double total = by_source[0] + by_source[1] + by_source[2];
@@ -128,10 +134,11 @@ TEST(NodeIntegration, SameBitsForAnySplit) {
 TEST(NodeIntegration, CountsNonFiniteNodes) {
   Problem p(100);
   p.joint_force[3 * 5 + 1] = std::nan("");
-  size_t hit = 0;  // nodes that gather joint slot 5 and integrate its y component
+  size_t hit = 0;  // nodes that gather joint row 5 (slot 10 or 11) and integrate its y component
   for (size_t n = 0; n < p.nodes; ++n)
     for (int32_t k = p.node_range[2 * n]; k < p.node_range[2 * n + 1]; ++k)
-      if (p.slots[k] == p.first_slot[1] + 5 && p.free_mask[3 * n + 1]) {
+      if ((p.slots[k] - p.first_slot[1]) / 2 == 5 && p.slots[k] >= p.first_slot[1] &&
+          p.slots[k] < p.first_slot[2] && p.free_mask[3 * n + 1]) {
         ++hit;
         break;
       }

@@ -79,20 +79,14 @@ void SolidToFluidSystem::run(const StepContext& ctx) {
   if (window_end(ctx, settings_.substeps)) exchange();
 }
 
-void SolidToFluidSystem::exchange() {
-  const Table& nodes = store_.table(solid::node_table);
-  const auto x = nodes.span<double>("x");
-  const auto v = nodes.span<double>("v");
+// The candidate pairs, their overlap volumes and the solid tets' mean velocities, for the solid at node
+// positions x with node velocities v.
+void SolidToFluidSystem::find_pairs(std::span<const double> x, std::span<const double> v) {
   const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
-  const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
-  const auto volume_prev = settings_.dilatation
-                               ? store_.table(solid::tet_table).span<double>("volume_at_exchange")
-                               : std::span<double>{};
+  const size_t ns = pairs_.solid_ids.size();
   parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
     kernels::tet_mean_vectors(v, solid_tets, pairs_.solid_velocity, b, e);
-    if (settings_.dilatation)
-      kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
   });
   kernels::coupling_broad_phase({pairs_.fluid_lo, pairs_.fluid_hi, pairs_.solid_lo, pairs_.solid_hi, 0.0},
                                 pairs_.broad);
@@ -107,6 +101,49 @@ void SolidToFluidSystem::exchange() {
   const kernels::OverlapArgs overlap{solver_.nodes(), solver_.tets(), x, solid_tets, list, volume};
   parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::overlap_volumes(overlap, b, e); });
   kernels::pair_ranges(list, pairs_.first);
+}
+
+// The concurrent coupling's fluid_to_solid uses the pairs of the exchange at the window's start, which a
+// restart does not have: they are found again from the positions then (x_at_exchange), and the pair
+// weights recomputed into scratch. The cells' own values are the checkpoint's and stay untouched.
+void SolidToFluidSystem::rebuild_pairs(std::span<const double> x_at_exchange) {
+  const auto v = store_.table(solid::node_table).span<double>("v");  // only its tet means, unused here
+  find_pairs(x_at_exchange, v);
+  const size_t nf = pairs_.fluid_ids.size();
+  std::vector<double> volume(nf), fraction(nf), target(3 * nf), sigma(nf);
+  const kernels::SolidToFluidArgs cells{settings_.rho,
+                                        settings_.beta,
+                                        settings_.dt,
+                                        solver_.volumes(),
+                                        pairs_.broad.pairs,
+                                        pairs_.first,
+                                        {pairs_.volume.data(), pairs_.broad.pairs.size()},
+                                        pairs_.solid_velocity,
+                                        {},
+                                        volume,
+                                        fraction,
+                                        target,
+                                        sigma,
+                                        pairs_.pair_weight,
+                                        {}};
+  parallel_for(nf, kTetGrain, [&](size_t b, size_t e) { kernels::solid_to_fluid_cells(cells, b, e); });
+}
+
+void SolidToFluidSystem::exchange() {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto x = nodes.span<double>("x");
+  const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
+  const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
+  find_pairs(x, nodes.span<double>("v"));
+  if (settings_.dilatation) {
+    const auto volume_prev = store_.table(solid::tet_table).span<double>("volume_at_exchange");
+    parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
+      kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
+    });
+  }
+  const auto& list = pairs_.broad.pairs;
+  const size_t np = list.size();
+  const std::span<double> volume(pairs_.volume.data(), np);
 
   Table& ft = store_.table(fluid::tet_table);
   const kernels::SolidToFluidArgs cells{

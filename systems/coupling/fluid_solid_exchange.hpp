@@ -58,8 +58,13 @@ class SolidToFluidSystem : public System {
   void exchange();  // unconditionally (the initial exchange at t = 0)
   // After a restart: hand the stored absorption and solid velocity back to the solver.
   void restore_solver();
+  // After a restart of the concurrent coupling: the last exchange's pairs, from the solid's node
+  // positions then (the cells' values are restored with the store).
+  void rebuild_pairs(std::span<const double> x_at_exchange);
 
  private:
+  void find_pairs(std::span<const double> x, std::span<const double> v);
+
   Store& store_;
   fluid::FluidSolver& solver_;
   ExchangeSettings settings_;

@@ -203,6 +203,7 @@ Access FluidToSolidSystem::access() const {
            {col(solid::node_table, "fluid_force"), col(S, "exchanges"), col(S, "penalty_scale"),
             col(S, "force"), col(S, "penalty"), col(S, "absorption"), col(S, "previous_force"),
             col(S, "previous_change"), col(S, "growing")}};
+  if (settings_.oscillation_lag == 2) a.writes.push_back(col(S, "older_change"));
   if (!pairs_.wet_faces.empty()) {
     a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
     a.reads.push_back(col(solid::node_table, "x"));
@@ -311,23 +312,31 @@ void FluidToSolidSystem::add_virtual_mass_force() {
 }
 
 // The added-mass instability of a staggered exchange shows as a total fluid force whose change flips sign
-// and grows from one fluid step to the next; `growing` counts such steps in a row (check_health stops at 4).
+// and grows; `growing` counts such fluid steps in a row (check_health stops at 4). The change is compared
+// with the one `oscillation_lag` steps back: 1 in the sequential coupling, whose unstable mode flips every
+// fluid step; 2 in the concurrent one, where the fluid answers a solid state two windows late (it samples
+// the solid at a window's start, its force acts over the next window) and the mode flips every second step
+// (measured at density ratio 0.1: 78, -257, -541, 837, 3324, -1183, -17068, ... N).
 void FluidToSolidSystem::watch_oscillation(const double force[3]) {
   Table& state = store_.table(coupling::state_table);
   auto previous = state.span<double>("previous_force");
   auto change = state.span<double>("previous_change");
+  const bool two_back = settings_.oscillation_lag == 2;
+  auto older = two_back ? state.span<double>("older_change") : std::span<double>{};
+  const auto reference = two_back ? older : change;
   double& growing = state.span<double>("growing")[0];
   double delta[3], dot = 0.0, norm_old = 0.0, norm = 0.0, size = 0.0;
   for (int d = 0; d < 3; ++d) {
     delta[d] = force[d] - previous[d];
-    dot += delta[d] * change[d];
-    norm_old += change[d] * change[d];
+    dot += delta[d] * reference[d];
+    norm_old += reference[d] * reference[d];
     norm += delta[d] * delta[d];
     size += force[d] * force[d];
   }
   const bool flips_and_grows = norm_old > 0.0 && -dot > norm_old && norm > 1e-12 * size;
   growing = flips_and_grows ? growing + 1.0 : 0.0;
   for (int d = 0; d < 3; ++d) {
+    if (two_back) older[d] = change[d];
     change[d] = delta[d];
     previous[d] = force[d];
   }

@@ -27,6 +27,7 @@ struct ExchangeSettings {
   bool dilatation = false;             // FluidSolidSpec::dilatation: the continuity source s_K
   bool volume_force = true;            // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
+  int oscillation_lag = 1;  // fluid steps between a solid state and the force answering it (2: concurrent)
 };
 
 // Scratch of one exchange, sized once and reused (grown only when the pair count grows).

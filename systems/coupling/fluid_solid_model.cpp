@@ -30,6 +30,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.dilatation = spec.dilatation;
   settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
+  if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;
   Table& state = store_.add_table(coupling::state_table);
   for (const char* c : {"exchanges", "pairs", "cut_cells", "solid_volume", "penalty_scale"})
     state.add<double>(c, 1);
@@ -39,7 +40,10 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   // Concurrent only (so the sequential coupling's state, and its hash, are unchanged): 1 while the store's
   // fluid state is already the window's end, a checkpoint having joined the fluid step mid-window. A
   // restart from there must not take that step again.
-  if (spec.coupling == FluidSolidSpec::Coupling::concurrent) state.add<double>("fluid_ahead", 1);
+  if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
+    state.add<double>("fluid_ahead", 1);
+    state.add<double>("older_change", 3);  // the oscillation watch's change two fluid steps back
+  }
   state.resize(1);
   solid.accept_fluid_forces();
   to_fluid_ = std::make_unique<SolidToFluidSystem>(store_, fluid.solver(), settings_, pairs_);
@@ -164,8 +168,12 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
         "times the fluid's ({:.6g} kg/m^3); when the mass of fluid the solid must push aside is comparable "
         "to its own, the force of one window over-corrects the next. What to change: set "
         "fluid_solid.added_mass: 1 (a virtual mass that cancels the lagged added-mass force), or make the "
-        "solid denser than the fluid. A smaller fluid.dt does not help this instability.",
-        t_fluid, force[0], force[1], force[2], mass / (settings_.rho * solid_volume_), settings_.rho);
+        "solid denser than the fluid. A smaller fluid.dt does not help this instability.{}",
+        t_fluid, force[0], force[1], force[2], mass / (settings_.rho * solid_volume_), settings_.rho,
+        settings_.oscillation_lag == 2
+            ? " With fluid_solid.coupling: concurrent the fluid answers the solid a window later still; "
+              "fluid_solid.coupling: sequential is the more stable choice for light solids."
+            : "");
   }
   // Newton's third law: the solid's penalty force is minus what the fluid's absorption felt, exactly but
   // for round-off (kernels/fluid_solid_exchange.hpp), also where solid tets overlap (the pair weights).

@@ -37,6 +37,20 @@ class Model {
   virtual void summarize(nlohmann::json& summary) const {}
   // Logs beside the time series (e.g. the fracture log), written atomically whenever it is.
   virtual void write_logs(const std::filesystem::path& dir) const {}
+
+  // Work a model keeps running beside the step graph (the concurrent fluid step, docs/coupling.md). The
+  // run loop calls before_step ahead of each step's graph and after_step right after it (before the
+  // health checks), both inside the graph's task arena, so a task launched there shares the run's
+  // threads. join() waits for that work; the loop calls it before anything reads the whole store while
+  // it could be running (a checkpoint, the final state hash) and on the way out. background_access():
+  // every column that work reads or writes; the run refuses to start when a system of the graph touches
+  // one of them, since the two run at the same time.
+  virtual void before_step(const StepContext& at) {}
+  virtual void after_step(const StepContext& taken) {}
+  virtual void join() {}
+  virtual Access background_access() const { return {}; }
+  // Wall times of work done outside the graph's systems (for the timing table and summary.json).
+  virtual std::vector<SystemTiming> timings() const { return {}; }
 };
 
 }  // namespace rift

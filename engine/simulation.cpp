@@ -40,6 +40,7 @@ Simulation::Simulation(Scene scene, RunOptions options)
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
+  check_background_access();
   choose_dt();
   if (options_.write_output) {
     std::filesystem::create_directories(options_.out_dir);
@@ -52,7 +53,40 @@ Simulation::Simulation(Scene scene, RunOptions options)
 }
 
 Simulation::~Simulation() {
+  join_background_quietly();  // before the graph's arena and the world go
   if (options_.write_output) close_log_file();
+}
+
+// Work a model runs beside the graph (Model::before_step) overlaps every system of the graph, so no system
+// may write a column that work touches or read one it writes: checked once, from the declared access, the
+// same rule the graph orders its own systems by.
+void Simulation::check_background_access() {
+  for (const auto& m : world_->models) {
+    const Access background = m->background_access();
+    if (background.reads.empty() && background.writes.empty() && !background.changes_topology) continue;
+    has_background_ = true;
+    for (System* s : world_->systems()) {
+      const std::string column = access_conflict(background, s->access());
+      if (!column.empty())
+        throw Error("internal: the " + m->name() + " model's work beside the step and the system " +
+                    s->name() + " both use " + column + " at the same time; report this with the scene");
+    }
+  }
+}
+
+void Simulation::join_background() {
+  if (!has_background_) return;
+  graph_->in_arena([&] {
+    for (const auto& m : world_->models) m->join();
+  });
+}
+
+void Simulation::join_background_quietly() noexcept {
+  try {
+    join_background();
+  } catch (const std::exception& e) {  // already stopping; the first error is the one reported
+    spdlog::debug("while stopping: {}", e.what());
+  }
 }
 
 void Simulation::choose_dt() {
@@ -142,8 +176,16 @@ void Simulation::restart_from_latest() {
 
 void Simulation::step_once() {
   const StepContext ctx{step_, time(), dt_};
+  if (has_background_)
+    graph_->in_arena([&] {
+      for (const auto& m : world_->models) m->before_step(ctx);
+    });
   graph_->run_step(ctx);
   ++step_;
+  if (has_background_)
+    graph_->in_arena([&] {
+      for (const auto& m : world_->models) m->after_step(ctx);
+    });
   const StepContext after{step_, time(), dt_, step_ == total_steps_};
   for (const auto& m : world_->models)
     if (auto diagnosis = m->check_health(after))
@@ -192,6 +234,7 @@ RunResult Simulation::run() {
       progress.update(step_, time());
     }
   } catch (const Error& e) {
+    join_background_quietly();
     progress.finish();
     result.steps = step_;
     result.time = time();
@@ -203,6 +246,7 @@ RunResult Simulation::run() {
     }
     throw;
   }
+  join_background();  // a run stopped mid-window: the state hashed is the joined one, as a checkpoint's
   progress.finish();
   result.steps = step_;
   result.time = time();
@@ -252,6 +296,8 @@ void Simulation::write_time_series() const {
 }
 
 void Simulation::write_checkpoint() {
+  // Everything a model runs beside the step ends first: a checkpoint is the store at rest.
+  join_background();
   const auto t0 = clock_type::now();
   CheckpointMeta meta;
   meta.step = step_;
@@ -285,6 +331,8 @@ void Simulation::write_summary(const RunResult& result) const {
   j["mesh"] = quality_to_json(world_->mesh_quality);
   j["mesh"]["seconds"] = world_->mesh_seconds;
   for (const auto& t : graph_->timings()) j["wall_seconds_per_system"][t.name] = t.seconds;
+  for (const auto& m : world_->models)
+    for (const auto& t : m->timings()) j["wall_seconds_per_system"][t.name] = t.seconds;
   j["wall_seconds_per_system"]["output"] = output_seconds_;
   j["wall_seconds_per_system"]["checkpoint"] = checkpoint_seconds_;
   for (const auto& m : world_->models) m->summarize(j["metrics"]);
@@ -292,6 +340,7 @@ void Simulation::write_summary(const RunResult& result) const {
 }
 
 void Simulation::log_timing_table() const {
+  // Work beside the graph (the concurrent fluid step) overlaps it: it is listed, not added to the total.
   double total = output_seconds_ + checkpoint_seconds_;
   for (const auto& t : graph_->timings()) total += t.seconds;
   std::string table =
@@ -301,6 +350,8 @@ void Simulation::log_timing_table() const {
                          calls > 0 ? 1e6 * s / calls : 0.0);
   };
   for (const auto& t : graph_->timings()) row(t.name, t.seconds, t.calls);
+  for (const auto& m : world_->models)
+    for (const auto& t : m->timings()) row(t.name, t.seconds, t.calls);
   row("output", output_seconds_, outputs_written_);
   row("checkpoint", checkpoint_seconds_, 0);
   spdlog::info("wall time per system:\n{}", table);

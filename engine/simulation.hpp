@@ -62,6 +62,9 @@ class Simulation {
   void write_checkpoint();
   void write_summary(const RunResult& result) const;
   void log_timing_table() const;
+  void check_background_access();
+  void join_background();
+  void join_background_quietly() noexcept;
 
   Scene scene_;
   RunOptions options_;
@@ -76,6 +79,7 @@ class Simulation {
   std::vector<std::string> metric_names_;
   std::vector<std::vector<double>> metric_rows_;
   double output_seconds_ = 0.0, checkpoint_seconds_ = 0.0;
+  bool has_background_ = false;  // a model runs work beside the graph (Model::before_step)
 };
 
 }  // namespace rift

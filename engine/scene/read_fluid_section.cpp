@@ -111,6 +111,8 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   c.beta = sec.real("beta", positive(""), 1.0);
   c.added_mass = sec.real("added_mass", non_negative(""), 0.0);
   c.dilatation = sec.boolean("dilatation", false);
+  static constexpr std::array<std::string_view, 2> kCouplings{"sequential", "concurrent"};
+  c.coupling = static_cast<FluidSolidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
   sec.finish();
   return c;
 }

@@ -297,6 +297,7 @@ void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(1, "beta", yaml_real(c.beta));
   o.line(1, "added_mass", yaml_real(c.added_mass));
   o.line(1, "dilatation", c.dilatation ? "true" : "false");
+  o.line(1, "coupling", c.coupling == FluidSolidSpec::Coupling::sequential ? "sequential" : "concurrent");
 }
 
 void emit_checkpoint(Lines& o, const CheckpointSpec& c) {

@@ -243,6 +243,11 @@ struct FluidSolidSpec {
   // docs/coupling.md); off: div u = 0 everywhere. Off by default: with the lagged exchange it made the
   // wedge scene's coupling unstable (docs/speed-accuracy.md).
   bool dilatation = false;
+  // When the fluid step runs (docs/coupling.md). sequential: on the last solid step of each window, from
+  // the solid at the window's end. concurrent: from the solid at the window's start, as a task beside the
+  // window's solid sub-steps (the fluid sees the solid one window earlier; the force lag is the same).
+  enum class Coupling { sequential, concurrent };
+  Coupling coupling = Coupling::sequential;
 };
 
 struct TimeSpec {

@@ -15,8 +15,11 @@ bool contains(const std::vector<std::string>& list, const std::string& key) {
   return std::find(list.begin(), list.end(), key) != list.end();
 }
 
-// The column that forces `later` to wait for `earlier`, or "" when they may overlap.
-std::string conflict(const Access& earlier, const Access& later) {
+std::mutex trace_mutex;
+
+}  // namespace
+
+std::string access_conflict(const Access& earlier, const Access& later) {
   if (earlier.changes_topology || later.changes_topology) return "topology";
   for (const auto& w : earlier.writes)
     if (contains(later.reads, w) || contains(later.writes, w)) return w;
@@ -24,10 +27,6 @@ std::string conflict(const Access& earlier, const Access& later) {
     if (contains(earlier.reads, w)) return w;
   return "";
 }
-
-std::mutex trace_mutex;
-
-}  // namespace
 
 StepGraph::StepGraph(std::vector<System*> systems, int threads)
     : systems_(std::move(systems)), threads_(threads), arena_(threads) {
@@ -54,7 +53,7 @@ void StepGraph::derive_edges() {
   edge_why_.assign(n, {});
   for (int i = n - 1; i >= 0; --i) {
     for (int j = i + 1; j < n; ++j) {
-      const std::string why = conflict(access_[i], access_[j]);
+      const std::string why = access_conflict(access_[i], access_[j]);
       if (why.empty() || reach[i].count(j)) continue;
       successors_[i].push_back(j);
       edge_why_[i].push_back(why);
@@ -97,9 +96,14 @@ void StepGraph::build_flow_graph() {
 
 void StepGraph::run_step(const StepContext& ctx) {
   current_ = &ctx;
+  // Isolated: while it waits for the step, this thread runs only the step's own tasks, never a task a
+  // model left running beside the graph (Model::before_step). Otherwise it could pick up a whole
+  // concurrent fluid solve and hold the solid's next step back until it ends.
   arena_.execute([&] {
-    start_->try_put(tbb::flow::continue_msg());
-    graph_->wait_for_all();
+    tbb::this_task_arena::isolate([&] {
+      start_->try_put(tbb::flow::continue_msg());
+      graph_->wait_for_all();
+    });
   });
   current_ = nullptr;
 }

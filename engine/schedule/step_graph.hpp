@@ -19,12 +19,6 @@
 
 namespace rift {
 
-struct SystemTiming {
-  std::string name;
-  double seconds = 0.0;  // accumulated wall time inside run()
-  int64_t calls = 0;
-};
-
 // One execution interval of a system, for tests and traces (recorded only when tracing is on).
 struct SystemInterval {
   int system = 0;

@@ -15,6 +15,17 @@ struct Access {
   bool changes_topology = false;    // may add/remove rows or rewrite connectivity
 };
 
+// Wall time of one system (or of work a model runs beside the graph), for the timing table and summary.
+struct SystemTiming {
+  std::string name;
+  double seconds = 0.0;  // accumulated wall time inside run()
+  int64_t calls = 0;
+};
+
+// The column that forces `later` to wait for `earlier` (both in one step), or "" when they may run at the
+// same time: a write of one that the other reads or writes, or a topology change.
+std::string access_conflict(const Access& earlier, const Access& later);
+
 struct StepContext {
   int64_t step = 0;   // index of the step being taken (0 for the first)
   double time = 0;    // simulated time at the start of the step [s]

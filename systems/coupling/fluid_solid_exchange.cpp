@@ -79,20 +79,14 @@ void SolidToFluidSystem::run(const StepContext& ctx) {
   if (window_end(ctx, settings_.substeps)) exchange();
 }
 
-void SolidToFluidSystem::exchange() {
-  const Table& nodes = store_.table(solid::node_table);
-  const auto x = nodes.span<double>("x");
-  const auto v = nodes.span<double>("v");
+// The candidate pairs, their overlap volumes and the solid tets' mean velocities, for the solid at node
+// positions x with node velocities v.
+void SolidToFluidSystem::find_pairs(std::span<const double> x, std::span<const double> v) {
   const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
-  const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
-  const auto volume_prev = settings_.dilatation
-                               ? store_.table(solid::tet_table).span<double>("volume_at_exchange")
-                               : std::span<double>{};
+  const size_t ns = pairs_.solid_ids.size();
   parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
     kernels::tet_mean_vectors(v, solid_tets, pairs_.solid_velocity, b, e);
-    if (settings_.dilatation)
-      kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
   });
   kernels::coupling_broad_phase({pairs_.fluid_lo, pairs_.fluid_hi, pairs_.solid_lo, pairs_.solid_hi, 0.0},
                                 pairs_.broad);
@@ -107,6 +101,49 @@ void SolidToFluidSystem::exchange() {
   const kernels::OverlapArgs overlap{solver_.nodes(), solver_.tets(), x, solid_tets, list, volume};
   parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::overlap_volumes(overlap, b, e); });
   kernels::pair_ranges(list, pairs_.first);
+}
+
+// The concurrent coupling's fluid_to_solid uses the pairs of the exchange at the window's start, which a
+// restart does not have: they are found again from the positions then (x_at_exchange), and the pair
+// weights recomputed into scratch. The cells' own values are the checkpoint's and stay untouched.
+void SolidToFluidSystem::rebuild_pairs(std::span<const double> x_at_exchange) {
+  const auto v = store_.table(solid::node_table).span<double>("v");  // only its tet means, unused here
+  find_pairs(x_at_exchange, v);
+  const size_t nf = pairs_.fluid_ids.size();
+  std::vector<double> volume(nf), fraction(nf), target(3 * nf), sigma(nf);
+  const kernels::SolidToFluidArgs cells{settings_.rho,
+                                        settings_.beta,
+                                        settings_.dt,
+                                        solver_.volumes(),
+                                        pairs_.broad.pairs,
+                                        pairs_.first,
+                                        {pairs_.volume.data(), pairs_.broad.pairs.size()},
+                                        pairs_.solid_velocity,
+                                        {},
+                                        volume,
+                                        fraction,
+                                        target,
+                                        sigma,
+                                        pairs_.pair_weight,
+                                        {}};
+  parallel_for(nf, kTetGrain, [&](size_t b, size_t e) { kernels::solid_to_fluid_cells(cells, b, e); });
+}
+
+void SolidToFluidSystem::exchange() {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto x = nodes.span<double>("x");
+  const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
+  const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
+  find_pairs(x, nodes.span<double>("v"));
+  if (settings_.dilatation) {
+    const auto volume_prev = store_.table(solid::tet_table).span<double>("volume_at_exchange");
+    parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
+      kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
+    });
+  }
+  const auto& list = pairs_.broad.pairs;
+  const size_t np = list.size();
+  const std::span<double> volume(pairs_.volume.data(), np);
 
   Table& ft = store_.table(fluid::tet_table);
   const kernels::SolidToFluidArgs cells{
@@ -166,6 +203,7 @@ Access FluidToSolidSystem::access() const {
            {col(solid::node_table, "fluid_force"), col(S, "exchanges"), col(S, "penalty_scale"),
             col(S, "force"), col(S, "penalty"), col(S, "absorption"), col(S, "previous_force"),
             col(S, "previous_change"), col(S, "growing")}};
+  if (settings_.oscillation_lag == 2) a.writes.push_back(col(S, "older_change"));
   if (!pairs_.wet_faces.empty()) {
     a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
     a.reads.push_back(col(solid::node_table, "x"));
@@ -274,23 +312,31 @@ void FluidToSolidSystem::add_virtual_mass_force() {
 }
 
 // The added-mass instability of a staggered exchange shows as a total fluid force whose change flips sign
-// and grows from one fluid step to the next; `growing` counts such steps in a row (check_health stops at 4).
+// and grows; `growing` counts such fluid steps in a row (check_health stops at 4). The change is compared
+// with the one `oscillation_lag` steps back: 1 in the sequential coupling, whose unstable mode flips every
+// fluid step; 2 in the concurrent one, where the fluid answers a solid state two windows late (it samples
+// the solid at a window's start, its force acts over the next window) and the mode flips every second step
+// (measured at density ratio 0.1: 78, -257, -541, 837, 3324, -1183, -17068, ... N).
 void FluidToSolidSystem::watch_oscillation(const double force[3]) {
   Table& state = store_.table(coupling::state_table);
   auto previous = state.span<double>("previous_force");
   auto change = state.span<double>("previous_change");
+  const bool two_back = settings_.oscillation_lag == 2;
+  auto older = two_back ? state.span<double>("older_change") : std::span<double>{};
+  const auto reference = two_back ? older : change;
   double& growing = state.span<double>("growing")[0];
   double delta[3], dot = 0.0, norm_old = 0.0, norm = 0.0, size = 0.0;
   for (int d = 0; d < 3; ++d) {
     delta[d] = force[d] - previous[d];
-    dot += delta[d] * change[d];
-    norm_old += change[d] * change[d];
+    dot += delta[d] * reference[d];
+    norm_old += reference[d] * reference[d];
     norm += delta[d] * delta[d];
     size += force[d] * force[d];
   }
   const bool flips_and_grows = norm_old > 0.0 && -dot > norm_old && norm > 1e-12 * size;
   growing = flips_and_grows ? growing + 1.0 : 0.0;
   for (int d = 0; d < 3; ++d) {
+    if (two_back) older[d] = change[d];
     change[d] = delta[d];
     previous[d] = force[d];
   }

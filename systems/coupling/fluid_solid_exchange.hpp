@@ -27,6 +27,7 @@ struct ExchangeSettings {
   bool dilatation = false;             // FluidSolidSpec::dilatation: the continuity source s_K
   bool volume_force = true;            // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
+  int oscillation_lag = 1;  // fluid steps between a solid state and the force answering it (2: concurrent)
 };
 
 // Scratch of one exchange, sized once and reused (grown only when the pair count grows).
@@ -58,8 +59,13 @@ class SolidToFluidSystem : public System {
   void exchange();  // unconditionally (the initial exchange at t = 0)
   // After a restart: hand the stored absorption and solid velocity back to the solver.
   void restore_solver();
+  // After a restart of the concurrent coupling: the last exchange's pairs, from the solid's node
+  // positions then (the cells' values are restored with the store).
+  void rebuild_pairs(std::span<const double> x_at_exchange);
 
  private:
+  void find_pairs(std::span<const double> x, std::span<const double> v);
+
   Store& store_;
   fluid::FluidSolver& solver_;
   ExchangeSettings settings_;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "engine/scene/output_fields.hpp"
@@ -28,17 +30,33 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.dilatation = spec.dilatation;
   settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
+  if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;
   Table& state = store_.add_table(coupling::state_table);
   for (const char* c : {"exchanges", "pairs", "cut_cells", "solid_volume", "penalty_scale"})
     state.add<double>(c, 1);
   for (const char* c : {"force", "penalty", "absorption", "previous_force", "previous_change"})
     state.add<double>(c, 3);
   state.add<double>("growing", 1);
+  // Concurrent only (so the sequential coupling's state, and its hash, are unchanged): 1 while the store's
+  // fluid state is already the window's end, a checkpoint having joined the fluid step mid-window. A
+  // restart from there must not take that step again.
+  if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
+    state.add<double>("fluid_ahead", 1);
+    state.add<double>("older_change", 3);  // the oscillation watch's change two fluid steps back
+  }
   state.resize(1);
   solid.accept_fluid_forces();
   to_fluid_ = std::make_unique<SolidToFluidSystem>(store_, fluid.solver(), settings_, pairs_);
   to_solid_ = std::make_unique<FluidToSolidSystem>(store_, settings_, pairs_, fluid.solver().volumes());
-  fluid.surround_step(to_fluid_.get(), to_solid_.get());
+  if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
+    fluid_step_ = &fluid.hand_over_step();
+    concurrent_ = std::make_unique<ConcurrentFluidStep>(*fluid_step_);
+    // The solid's positions at the last exchange: its pairs serve the window's end, so a restart inside
+    // the window finds them again from these (SolidToFluidSystem::rebuild_pairs).
+    store_.table(solid::node_table).add<double>("x_at_exchange", 3);
+  } else {
+    fluid.surround_step(to_fluid_.get(), to_solid_.get());
+  }
   for (double v : store_.table(solid::tet_table).span<double>("volume0")) solid_volume_ += v;
   // The exchange at t = 0: the fluid's first step sees the solid, and the first window already feels the
   // fluid's body force (buoyancy); the absorption's reaction follows from the first fluid step on.
@@ -50,6 +68,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
       wetted.push_back(static_cast<int32_t>(f));
   if (!wetted.empty()) to_solid_->set_wetted_faces(std::move(wetted));
   to_fluid_->exchange();
+  if (concurrent_) keep_exchange_positions();
   if (spec.added_mass > 0.0) {
     to_solid_->set_added_mass();
     solid.add_node_mass(store_.table(solid::node_table).span<double>("fluid_added_mass"));
@@ -63,6 +82,65 @@ FluidSolidModel::~FluidSolidModel() = default;
 
 void FluidSolidModel::restored(const StepContext&) {
   to_fluid_->restore_solver();
+  if (concurrent_) to_fluid_->rebuild_pairs(store_.table(solid::node_table).span<double>("x_at_exchange"));
+}
+
+void FluidSolidModel::keep_exchange_positions() {
+  Table& nodes = store_.table(solid::node_table);
+  const auto x = nodes.span<double>("x");
+  std::copy(x.begin(), x.end(), nodes.span<double>("x_at_exchange").begin());
+}
+
+// The window of solid steps [t_n, t_n+1) starts with the launch of the fluid step t_n -> t_n+1, from what
+// the exchange at t_n (after_step of the window before, or the constructor's at t = 0) gave the solver.
+void FluidSolidModel::before_step(const StepContext& at) {
+  if (!concurrent_ || at.step % settings_.substeps != 0) return;
+  concurrent_->launch(at.time);
+}
+
+// At the window's end t_n+1: the fluid step must be done (join), then its force goes to the solid for the
+// next window and the solid at t_n+1 goes to the fluid for the next fluid step, as in the sequential
+// coupling but for the solid's time the fluid sees. The launch waits for the next step's before_step, so
+// that between steps (outputs, health checks, a checkpoint at a window's end) no task is running.
+void FluidSolidModel::after_step(const StepContext& taken) {
+  if (!concurrent_ || (taken.step + 1) % settings_.substeps != 0) return;
+  concurrent_->join();
+  store_.table(coupling::state_table).span<double>("fluid_ahead")[0] = 0.0;
+  auto timed = [](SystemTiming& t, auto&& fn) {
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++t.calls;
+  };
+  timed(to_solid_time_, [&] { to_solid_->exchange(); });
+  timed(to_fluid_time_, [&] {
+    to_fluid_->exchange();
+    keep_exchange_positions();
+  });
+}
+
+// Mid-window (a checkpoint, the end of a stopped run): the stored fluid state becomes the window's end.
+void FluidSolidModel::join() {
+  if (!concurrent_ || !concurrent_->running()) return;
+  concurrent_->join();
+  store_.table(coupling::state_table).span<double>("fluid_ahead")[0] = 1.0;
+}
+
+// What the fluid task may touch while the graph runs the solid's sub-steps: the fluid step's declared
+// columns (its state and the coupling columns it reads). The run loop checks them against every system of
+// the graph (Simulation, engine/schedule access_conflict): none may write one of them or read one it
+// writes, and since every fluid column belongs to the fluid's tables, a solid column in this list would be
+// caught the same way. The exchanges, which do read and write both sides, run only after the join.
+Access FluidSolidModel::background_access() const {
+  return fluid_step_ ? fluid_step_->access() : Access{};
+}
+
+std::vector<SystemTiming> FluidSolidModel::timings() const {
+  if (!concurrent_) return {};
+  return {{"fluid_step", concurrent_->task_seconds(), concurrent_->steps()},
+          {"fluid_wait", concurrent_->wait_seconds(), concurrent_->steps()},
+          to_solid_time_,
+          to_fluid_time_};
 }
 
 std::optional<std::string> FluidSolidModel::check_health(const StepContext& after) {
@@ -90,8 +168,12 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
         "times the fluid's ({:.6g} kg/m^3); when the mass of fluid the solid must push aside is comparable "
         "to its own, the force of one window over-corrects the next. What to change: set "
         "fluid_solid.added_mass: 1 (a virtual mass that cancels the lagged added-mass force), or make the "
-        "solid denser than the fluid. A smaller fluid.dt does not help this instability.",
-        t_fluid, force[0], force[1], force[2], mass / (settings_.rho * solid_volume_), settings_.rho);
+        "solid denser than the fluid. A smaller fluid.dt does not help this instability.{}",
+        t_fluid, force[0], force[1], force[2], mass / (settings_.rho * solid_volume_), settings_.rho,
+        settings_.oscillation_lag == 2
+            ? " With fluid_solid.coupling: concurrent the fluid answers the solid a window later still; "
+              "fluid_solid.coupling: sequential is the more stable choice for light solids."
+            : "");
   }
   // Newton's third law: the solid's penalty force is minus what the fluid's absorption felt, exactly but
   // for round-off (kernels/fluid_solid_exchange.hpp), also where solid tets overlap (the pair weights).
@@ -148,6 +230,7 @@ void FluidSolidModel::summarize(nlohmann::json& summary) const {
   s["substeps"] = settings_.substeps;
   s["beta"] = settings_.beta;
   s["added_mass"] = settings_.added_mass;
+  s["coupling"] = spec_.coupling == FluidSolidSpec::Coupling::concurrent ? "concurrent" : "sequential";
   s["force_model"] = settings_.volume_force ? "volume" : "wetted_faces";
   s["wetted_faces"] = pairs_.wet_faces.size();
   s["wetted_faces_outside_fluid"] = pairs_.wet_outside;

@@ -15,6 +15,7 @@
 #include "engine/core/table.hpp"
 #include "engine/model.hpp"
 #include "engine/scene/scene.hpp"
+#include "systems/coupling/concurrent_fluid_step.hpp"
 #include "systems/coupling/fluid_solid_exchange.hpp"
 #include "systems/fluid/fluid_model.hpp"
 #include "systems/solid_model.hpp"
@@ -33,11 +34,20 @@ class FluidSolidModel : public Model {
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;
+  // fluid_solid.coupling: concurrent (docs/coupling.md): the fluid step as a task from the start of each
+  // window, joined at its end; the exchanges run between the two, outside the step graph.
+  void before_step(const StepContext& at) override;
+  void after_step(const StepContext& taken) override;
+  void join() override;
+  Access background_access() const override;
+  std::vector<SystemTiming> timings() const override;
 
   // The fewest solid steps per fluid step that keep dt_s <= safety x the solid's stable step.
   static int64_t automatic_substeps(double fluid_dt, double solid_stable_dt, double safety);
 
  private:
+  void keep_exchange_positions();  // concurrent: solid_node.x_at_exchange = x
+
   Store& store_;
   FluidSolidSpec spec_;
   ExchangeSettings settings_;
@@ -45,6 +55,9 @@ class FluidSolidModel : public Model {
   ExchangePairs pairs_;
   std::unique_ptr<SolidToFluidSystem> to_fluid_;
   std::unique_ptr<FluidToSolidSystem> to_solid_;
+  FluidStepSystem* fluid_step_ = nullptr;            // concurrent only: the fluid's step, driven from here
+  std::unique_ptr<ConcurrentFluidStep> concurrent_;  // concurrent only
+  SystemTiming to_solid_time_{"fluid_to_solid"}, to_fluid_time_{"solid_to_fluid"};
 };
 
 }  // namespace rift

@@ -172,14 +172,18 @@ FluidModel::~FluidModel() = default;
 
 std::vector<System*> FluidModel::systems() {
   std::vector<System*> out;
+  if (handed_over_) return out;
   if (before_) out.push_back(before_);
   out.push_back(step_.get());
   if (after_) out.push_back(after_);
   return out;
 }
 
+// Outputs and metrics read the fluid's state from the store, never from the solver: with the concurrent
+// coupling the solver may be mid-step in a task while the run loop writes them (the store holds the last
+// published step, the same values as the solver's in the sequential coupling).
 void FluidModel::cell_fields() {
-  const auto u = solver_->velocity();
+  const auto u = store_.table(fluid::node_table).span<double>("velocity");
   const auto conn = solver_->tets();
   const size_t nt = h_.size();
   divergence_.assign(nt, 0.0);
@@ -198,7 +202,7 @@ void FluidModel::cell_fields() {
 }
 
 double FluidModel::kinetic_energy() const {
-  const auto u = solver_->velocity();
+  const auto u = store_.table(fluid::node_table).span<double>("velocity");
   double e = 0.0;
   for (size_t n = 0; n < node_volume_.size(); ++n)
     e += node_volume_[n] * (u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
@@ -285,13 +289,13 @@ void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& ro
   row.emplace_back("fluid_divergence_max", v("divergence_max"));
   row.emplace_back("fluid_cfl", v("cfl"));
   row.emplace_back("fluid_kinetic_energy", kinetic_energy());
-  const auto u = solver_->velocity();
+  const auto u = store_.table(fluid::node_table).span<double>("velocity");
   double speed2 = 0.0;
   for (size_t n = 0; n < u.size() / 3; ++n)
     speed2 =
         std::max(speed2, u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
   row.emplace_back("fluid_max_speed", std::sqrt(speed2));
-  const auto p = solver_->pressure();
+  const auto p = store_.table(fluid::node_table).span<double>("pressure");
   double pmin = p.empty() ? 0.0 : p[0], pmax = pmin;
   for (double q : p) {
     pmin = std::min(pmin, q);
@@ -336,6 +340,7 @@ void FluidModel::restored(const StepContext& at) {
       at.time, nodes.span<double>("velocity"), nodes.span<double>("pressure"),
       store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient"),
       previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{});
+  step_->restore_report();
 }
 
 GhiaErrors FluidModel::ghia_errors() const {

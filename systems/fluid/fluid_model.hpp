@@ -38,6 +38,12 @@ class FluidModel : public Model {
   std::vector<System*> systems() override;
   // The coupling's exchange systems run just before and just after the fluid step (systems/coupling).
   void surround_step(System* before, System* after) { before_ = before, after_ = after; }
+  // The concurrent coupling steps the fluid itself, beside the graph (systems/coupling/
+  // concurrent_fluid_step.hpp): the fluid then puts no system into the graph.
+  FluidStepSystem& hand_over_step() {
+    handed_over_ = true;
+    return *step_;
+  }
   std::optional<double> required_dt() const override { return spec_.dt / static_cast<double>(substeps_); }
   std::optional<std::string> check_health(const StepContext& after) override;
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
@@ -49,7 +55,9 @@ class FluidModel : public Model {
   fluid::FluidSolver& solver() { return *solver_; }
   const FluidSpec& spec() const { return spec_; }
   int64_t substeps() const { return substeps_; }
-  double kinetic_energy() const;  // 1/2 rho sum_n V_n |u_n|^2 (lumped) [J]
+  // 1/2 rho sum_n V_n |u_n|^2 (lumped) [J], of the stored velocity (what the run loop may read: with the
+  // concurrent coupling the solver's own may be mid-step).
+  double kinetic_energy() const;
   // The centre lines x = 1/2 (u) and y = 1/2 (v) of the mesh's bounding box at its zmin plane, lengths
   // scaled to the unit square and velocities by the speed of the first velocity boundary.
   GhiaErrors ghia_errors() const;
@@ -64,6 +72,7 @@ class FluidModel : public Model {
   std::unique_ptr<FluidStepSystem> step_;
   System* before_ = nullptr;
   System* after_ = nullptr;
+  bool handed_over_ = false;
   std::vector<double> grad_, h_, node_volume_;  // P1 gradients (12 per tet), longest edge, lumped volume
   std::vector<double> divergence_, cfl_;        // output scratch
 };

@@ -22,8 +22,16 @@ void FluidStepSystem::run(const StepContext& ctx) {
   // The run's clock is authoritative (t = step x dt): no drift from summing dt, and a restart starts
   // from the same time bit for bit.
   if ((ctx.step + 1) % every_ != 0) return;
-  solver_.set_time(static_cast<double>(ctx.step + 1 - every_) * ctx.dt);
+  advance(static_cast<double>(ctx.step + 1 - every_) * ctx.dt);
+  publish();
+}
+
+void FluidStepSystem::advance(double start_time) {
+  solver_.set_time(start_time);
   last_ = solver_.step();
+}
+
+void FluidStepSystem::publish() {
   Table& nodes = store_.table(fluid::node_table);
   const auto u = solver_.velocity();
   const auto p = solver_.pressure();
@@ -55,6 +63,23 @@ void FluidStepSystem::run(const StepContext& ctx) {
   double& max_div = step.span<double>("max_divergence")[0];
   max_cfl = std::max(max_cfl, r.cfl);
   max_div = std::max(max_div, r.divergence_max);
+}
+
+void FluidStepSystem::restore_report() {
+  const Table& step = store_.table(fluid::step_table);
+  auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
+  fluid::FluidStepReport& r = last_;
+  r.picard_iterations = static_cast<int>(v("picard_iterations"));
+  r.converged = v("converged") != 0.0;
+  r.velocity_iterations = static_cast<int>(v("velocity_iterations"));
+  r.schur_iterations = static_cast<int>(v("schur_iterations"));
+  r.pressure_iterations = static_cast<int>(v("pressure_iterations"));
+  r.amg_setups = static_cast<int>(v("amg_setups"));
+  r.velocity_change = v("velocity_change");
+  r.pressure_change = v("pressure_change");
+  r.divergence_l2 = v("divergence_l2");
+  r.divergence_max = v("divergence_max");
+  r.cfl = v("cfl");
 }
 
 }  // namespace rift

@@ -18,7 +18,15 @@ class FluidStepSystem : public System {
       : store_(store), solver_(solver), every_(every), coupling_reads_(std::move(coupling_reads)) {}
   std::string name() const override { return "fluid_step"; }
   Access access() const override;
-  void run(const StepContext& ctx) override;
+  void run(const StepContext& ctx) override;  // on the last step of each window: advance, then publish
+
+  // The two halves of run, for the concurrent coupling (systems/coupling/concurrent_fluid_step.hpp), which
+  // advances in a task beside the solid's sub-steps and publishes after joining it. advance touches only
+  // the solver (never the store); publish copies the solver's state and the step's report into the store.
+  void advance(double start_time);
+  void publish();
+  // After a restart whose fluid step was already taken: the report of that step, from the store.
+  void restore_report();
 
   const fluid::FluidStepReport& last_report() const { return last_; }
 

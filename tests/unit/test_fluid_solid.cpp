@@ -277,9 +277,8 @@ TEST(FluidSolidRun, ARestartFromMidWindowContinuesBitForBit) {
   const Scene scene = block_scene(moving());
   const RunResult whole = test::run_scene(scene, dir.path() / "whole", 1);
   // Stop inside a window of sub-steps (not on a fluid step), then continue from the checkpoint.
-  const RunResult first = test::run_scene(scene, dir.path() / "split", 1, whole.steps / 2 + 3);
+  const auto [first, rest] = test::stop_and_resume(scene, dir.path() / "split", 1, whole.steps / 2 + 3);
   EXPECT_FALSE(first.completed);
-  const RunResult rest = test::run_scene(scene, dir.path() / "split", 1, std::nullopt, true);
   ASSERT_TRUE(rest.completed);
   EXPECT_EQ(rest.state_hash, whole.state_hash);
 }

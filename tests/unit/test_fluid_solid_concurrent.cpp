@@ -87,9 +87,8 @@ TEST(FluidSolidConcurrent, ARestartFromMidWindowContinuesBitForBit) {
   test::TempDir dir;
   const Scene scene = concurrent_block(moving());
   const RunResult whole = test::run_scene(scene, dir.path() / "whole", 2);
-  const RunResult first = test::run_scene(scene, dir.path() / "split", 2, whole.steps / 2 + 3);
+  const auto [first, rest] = test::stop_and_resume(scene, dir.path() / "split", 2, whole.steps / 2 + 3);
   EXPECT_FALSE(first.completed);
-  const RunResult rest = test::run_scene(scene, dir.path() / "split", 2, std::nullopt, true);
   ASSERT_TRUE(rest.completed);
   EXPECT_EQ(rest.state_hash, whole.state_hash);
 }
@@ -101,9 +100,8 @@ TEST(FluidSolidConcurrent, ARestartFromAWindowsEndContinuesBitForBit) {
   const RunResult whole = test::run_scene(scene, dir.path() / "whole", 1);
   const int64_t windows = static_cast<int64_t>(std::llround(scene.time.end / scene.fluid->dt));
   const int64_t substeps = whole.steps / windows;
-  const RunResult first = test::run_scene(scene, dir.path() / "split", 1, 2 * substeps);
+  const auto [first, rest] = test::stop_and_resume(scene, dir.path() / "split", 1, 2 * substeps);
   EXPECT_FALSE(first.completed);
-  const RunResult rest = test::run_scene(scene, dir.path() / "split", 1, std::nullopt, true);
   ASSERT_TRUE(rest.completed);
   EXPECT_EQ(rest.state_hash, whole.state_hash);
 }

@@ -20,4 +20,14 @@ inline RunResult run_scene(const Scene& scene, const std::filesystem::path& dir,
   return Simulation(scene, o).run();
 }
 
+// A run stopped after step `stop` (it leaves a checkpoint), then continued with --restart latest.
+struct StoppedAndResumed {
+  RunResult first, rest;
+};
+inline StoppedAndResumed stop_and_resume(const Scene& scene, const std::filesystem::path& dir, int threads,
+                                         int64_t stop) {
+  RunResult first = run_scene(scene, dir, threads, stop);
+  return {first, run_scene(scene, dir, threads, std::nullopt, true)};
+}
+
 }  // namespace rift::test

@@ -275,10 +275,11 @@ void SolidModel::build_force_slots() {
   auto range = nodes.span<int32_t>("slots");
   std::vector<int32_t> next(count.begin(), count.end() - 1);
   int32_t first = 0;
-  for (auto list : {tets, joints, faces}) {
-    const bool paired = list.data() == joints.data() && !joints.empty();
+  const std::span<const int32_t> sources[3] = {tets, joints, faces};
+  for (int src = 0; src < 3; ++src) {
+    const auto list = sources[src];
     for (size_t k = 0; k < list.size(); ++k)
-      slot[next[list[k]]++] = first + static_cast<int32_t>(paired ? joint_corner_slot(k) : k);
+      slot[next[list[k]]++] = first + static_cast<int32_t>(src == 1 ? joint_corner_slot(k) : k);
     first += static_cast<int32_t>(list.size());
   }
   for (size_t n = 0; n < nodes.size(); ++n) {

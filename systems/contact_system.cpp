@@ -324,6 +324,7 @@ bool ContactSystem::add_new_candidates() {
   const auto joint_tets = store_.has(solid::joint_table)
                               ? store_.table(solid::joint_table).span<const int32_t>("tets")
                               : std::span<const int32_t>{};
+  const size_t broken_before = broken_pairs_.size();
   for (; events_seen_ < events.size(); ++events_seen_) {
     const int32_t j = joint[events_seen_];
     grouping_->break_joint(j, time[events_seen_]);
@@ -334,7 +335,13 @@ bool ContactSystem::add_new_candidates() {
         candidates_.push_back(t);
       }
     }
+    const int32_t a = joint_tets[2 * j], b = joint_tets[2 * j + 1];
+    broken_pairs_.push_back({std::min(a, b), std::max(a, b)});
   }
+  // Breaks are events, not steps: sorting the few new ones into the list costs nothing per step.
+  std::sort(broken_pairs_.begin() + static_cast<std::ptrdiff_t>(broken_before), broken_pairs_.end());
+  std::inplace_merge(broken_pairs_.begin(),
+                     broken_pairs_.begin() + static_cast<std::ptrdiff_t>(broken_before), broken_pairs_.end());
   // New candidates need boxes; a new break also changes who is tied to whom (the exclusions).
   return candidates_.size() != before || events_seen_ != events_before;
 }
@@ -385,8 +392,12 @@ void ContactSystem::detect() {
   args.run_chunks = &run_chunks_in_parallel;
   kernels::contact_broad_phase(args, broad_);
   // Pairs still tied at some vertex, or both in one body's continuous part, are the continuum's (header).
+  // Except the two tets of a broken joint: nothing else keeps their faces apart, and a pair excluded while
+  // tied elsewhere sinks into itself unresisted, then meets the contact with the whole overlap at once
+  // when its last tie breaks (docs/contact.md, "Never excluded").
   const auto group = grouping_->node_vertex();
   auto tied = [&](const kernels::ContactPair& p) {
+    if (std::binary_search(broken_pairs_.begin(), broken_pairs_.end(), p)) return false;
     if (tet_body_[p.a] == tet_body_[p.b] && !in_zone_[p.a] && !in_zone_[p.b]) return true;
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j)

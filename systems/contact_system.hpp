@@ -15,6 +15,8 @@
 // their interaction; contact across a crack starts where the crack has separated the copies, so tets
 // around a crack front (still tied around it) never push each other apart. Likewise two tets of one body
 // outside the fracture zone (a node-sharing continuum does not touch itself at strains a tet survives).
+// Never excluded: the two tets of a broken joint. Tied elsewhere (at the crack front), they would otherwise
+// sink into each other under compression with nothing to stop them.
 //
 // When to detect: at the first step with candidates, whenever candidates join, and when some candidate
 // node has moved by more than buffer / 2 since the last detection (the criterion in
@@ -108,13 +110,15 @@ class ContactSystem : public System {
   std::vector<int32_t> boundary_tets_;  // tets with a face on the outer boundary (candidates if bodies_ > 1)
   std::vector<std::pair<int32_t, int>> boundary_faces_;
   std::vector<int32_t> tet_body_;  // per tet: its body (a root input vertex)
-  std::vector<uint8_t> in_zone_;   // per tet: has a joint  // (tet, face) on the outer boundary, bodies_ > 1
+  std::vector<uint8_t> in_zone_;   // per tet: has a joint
   // Built at the first wake (a scene that never breaks never pays for it).
   std::unique_ptr<MeshConversion> grouping_;
   size_t events_seen_ = 0;
   bool awake_ = false, must_detect_ = false;
   std::vector<uint8_t> is_candidate_;  // per tet
   std::vector<int32_t> candidates_;    // tet ids, in the order they joined (the broad phase ignores order)
+  // The two tets of every broken joint (a < b), sorted: never excluded as tied (detect()).
+  std::vector<kernels::ContactPair> broken_pairs_;
   // Scratch reused between steps and detections.
   std::vector<double> lo_, hi_;
   kernels::BroadPhaseWorkspace broad_;

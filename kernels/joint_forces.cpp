@@ -121,6 +121,8 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
     double mean_o = 0.0, mean_s = 0.0, energy = 0.0, damage = 0.0, normal_sum = 0.0, shear_sum = 0.0;
     int failed = 0;
     double* history = &a.d_max[P * j];
+    double* anchor =
+        m.residual_friction > 0.0 && !a.residual_anchor.empty() ? &a.residual_anchor[3 * P * j] : nullptr;
     for (size_t q = 0; q < P; ++q) {
       double o, sv[3], s;
       point_jump(g, rule.N[q], o, sv, s);
@@ -137,6 +139,11 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
       energy += wA * r.energy;
       double t[3];
       for (int c = 0; c < 3; ++c) t[c] = r.sigma * g.n[c] + r.tau_per_slip * sv[c];
+      if (anchor && r.d_max > 0.0) {  // damaged: the residual slider (its anchor rests while intact)
+        double tr[3];
+        energy += wA * residual_friction(r.residual_cap, 0.5 * k.stiffness, sv, g.n, &anchor[3 * q], tr);
+        for (int c = 0; c < 3; ++c) t[c] += tr[c];
+      }
       for (int i = 0; i < 3; ++i)
         for (int c = 0; c < 3; ++c) F[i][c] += wA * rule.N[q][i] * t[c];
     }

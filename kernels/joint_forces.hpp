@@ -73,6 +73,9 @@ struct JointArgs {
   std::atomic<size_t>* break_count = nullptr;
   // Optional input, 3 per joint: the initial offset o0 [m] (see above); empty = none.
   std::span<const double> initial_offset = {};
+  // In/out, 3 x rule->points per joint: each point's residual-friction anchor (joint_law.hpp,
+  // residual_friction()), starts at 0. Required when a material has residual_friction > 0; else ignored.
+  std::span<double> residual_anchor = {};
 };
 
 struct JointStatus {

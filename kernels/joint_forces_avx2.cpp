@@ -138,7 +138,7 @@ struct PointV {  // JointPointResponse, lane-wise (tau itself is not needed by t
 
 // The softened (D_eff > 0) branch of joint_point_response for all lanes, given the shared quantities.
 void softened(const MaterialV& m, const ScalesV& k, V4 o, V4 s, V4 De, V4 comp, V4 sigma_c, V4 fs, V4 sp,
-              V4 inv_sp, V4 st, PointV& r) {
+              V4 st, PointV& r) {
   alignas(32) double lane_D[4], lane_z[4];
   _mm256_store_pd(lane_D, De);
   for (int l = 0; l < 4; ++l) lane_z[l] = softening_z(lane_D[l]);
@@ -147,14 +147,6 @@ void softened(const MaterialV& m, const ScalesV& k, V4 o, V4 s, V4 De, V4 comp, 
   r.tau_per_slip = z * fs / (sp + De * st);
   const V4 tau = r.tau_per_slip * s;
   r.energy = 0.5 * (r.sigma * o + tau * s);
-  const V4 residual = both(comp, greater(m.mu, set1(0.0)));
-  if (lanes(residual) == 0) return;
-  const V4 q = (1.0 - z) * m.mu * (-sigma_c);
-  const V4 within = less(s, sp);
-  const V4 tps = simd::select(within, r.tau_per_slip + q * inv_sp, r.tau_per_slip + q / s);
-  const V4 energy = simd::select(within, r.energy + 0.5 * q * s * s * inv_sp, r.energy + q * (s - 0.5 * sp));
-  r.tau_per_slip = simd::select(residual, tps, r.tau_per_slip);
-  r.energy = simd::select(residual, energy, r.energy);
 }
 
 PointV point_law(const MaterialV& m, const ScalesV& k, Softening rule, double Z, V4 o, V4 s, V4 d_max) {
@@ -199,7 +191,7 @@ PointV point_law(const MaterialV& m, const ScalesV& k, Softening rule, double Z,
   if (lanes(intact) == 0xF) return r;
 
   PointV d = r;
-  softened(m, k, o, s, De, comp, sigma_c, fs, sp, inv_sp, st, d);
+  softened(m, k, o, s, De, comp, sigma_c, fs, sp, st, d);
   r.sigma = simd::select(intact, r.sigma, d.sigma);
   r.tau_per_slip = simd::select(intact, r.tau_per_slip, d.tau_per_slip);
   r.energy = simd::select(intact, r.energy, d.energy);
@@ -208,6 +200,7 @@ PointV point_law(const MaterialV& m, const ScalesV& k, Softening rule, double Z,
 
 struct Sums {  // per-joint accumulators over the points
   V4 F[3][3], mean_o, mean_s, energy, damage, normal, shear, failed, short_any;
+  V4 slider;  // some point is damaged and its material has residual friction: the scalar path's job
 };
 
 void integrate(const JointArgs& a, const size_t joint[4], int count, const GeometryV& g, const MaterialV& m,
@@ -221,6 +214,8 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
     for (int c = 0; c < 3; ++c) t.F[i][c] = zero;
   t.mean_o = t.mean_s = t.energy = t.damage = t.normal = t.shear = t.failed = zero;
   t.short_any = k.short_normal;
+  t.slider = zero;
+  const V4 has_friction = greater(m.mu, zero);
   for (size_t q = 0; q < P; ++q) {
     const double N0 = rule.N[q][0], N1 = rule.N[q][1], N2 = rule.N[q][2], w = rule.w[q];
     V4 d[3], sv[3];
@@ -235,6 +230,7 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
     for (int l = 0; l < count; ++l) history[l][q] = updated[l];
     t.failed += simd::keep(_mm256_cmp_pd(r.d_max, set1(1.0), _CMP_GE_OQ), set1(1.0));
     t.short_any = either(t.short_any, r.short_shear);
+    t.slider = either(t.slider, both(has_friction, greater(r.d_max, zero)));
     t.normal += r.normal_part;
     t.shear += r.shear_part;
     t.damage = _mm256_max_pd(t.damage, r.d_max);
@@ -293,8 +289,19 @@ void process_group(const JointArgs& a, const size_t joint[4], int count, double 
   if ((lanes(g.ok) & ((1 << count) - 1)) != (1 << count) - 1) return scalar_group(a, joint, count, status);
   const MaterialV m = load_materials(a, joint);
   const ScalesV k = scales(m, g.h, a.softening, Z);
+  // The residual-friction slider keeps a slip history (joint_law.hpp): a group with such a point goes
+  // through the scalar path from its state before this call. Damaged joints are few.
+  const size_t P = static_cast<size_t>(a.rule->points);
+  double saved[4][kMaxJointPoints];
+  for (int l = 0; l < count; ++l)
+    for (size_t q = 0; q < P; ++q) saved[l][q] = a.d_max[P * joint[l] + q];
   Sums t;
   integrate(a, joint, count, g, m, k, Z, t);
+  if ((lanes(t.slider) & ((1 << count) - 1)) != 0) {
+    for (int l = 0; l < count; ++l)
+      for (size_t q = 0; q < P; ++q) a.d_max[P * joint[l] + q] = saved[l][q];
+    return scalar_group(a, joint, count, status);
+  }
   store(a, joint, count, t, status);
 }
 

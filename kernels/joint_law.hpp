@@ -19,7 +19,8 @@
 //   damaged, D_eff > 0 ("secant" form, also on the envelope):
 //       sigma = kn o,  kn = z(D_eff) f_t / (op + D_eff ot)          (o >= 0)
 //       tau   = ks s,  ks = z(D_eff) f_s / (sp + D_eff st)
-//             + in compression, residual friction (1 - z(D_eff)) mu_res |sigma| min(1, s / sp)
+//             + in compression, residual friction capped at (1 - z(D_eff)) mu_res |sigma|: a slider with
+//               a slip history, applied by the kernel (residual_friction() below)
 // Pure mode I on the envelope has o = op + D ot, so sigma = z(D) f_t: exactly the Y softening branch, and
 // below D_max the same formula is femdem.md's hysteretic rule z_unl = z(D_max)(op + D ot)/(op + D_max ot)
 // extended linearly to the origin. Likewise for pure mode II.
@@ -31,15 +32,15 @@
 //   is continuous everywhere except at damage onset (below) and dissipates -1/2 d.dK.d >= 0 for any path.
 // * At damage onset in mixed mode, the mode still below its peak switches from f (2y - y^2) to the secant
 //   f y: a drop of at most f/4 (at y = 1/2), none in pure modes. The energy lost is counted as dissipated.
-// * Residual friction (default mu_res = 0, Y3D has none) follows the Y hydro variant, tau -> mu_res |sigma|
-//   as z -> 0, mobilised over the slip sp. Like the rest of the law it has no slip history, so it is elastic
-//   in s (it returns its work on unloading) and its energy is part of the stored energy. True Coulomb slip
-//   is the contact model's job once the joint has broken. Requires mu_res <= tan(phi) for the step bound
-//   in joint_forces.hpp to hold.
+// * Residual friction (default mu_res = 0, Y3D has none) reaches the Y hydro variant's tau -> mu_res |sigma|
+//   as z -> 0, but as Coulomb friction with a slip history (an anchor per point), not elastic in s as in
+//   Y: that form stored energy in proportion to the slip and handed it back when the compression rose
+//   (until 2026-12-02; residual_friction() says how it broke up the wedge scene). Once the joint has
+//   broken, the contact model's friction takes over.
 //
 // Stored (recoverable) energy per unit area, exactly the potential of the tractions at fixed D_max and
 // fixed f_s:  compression 1/2 k o^2;  intact f_t op (x^2 - x^3/3) + f_s sp (y^2 - y^3/3);  damaged
-// 1/2 kn o^2 + 1/2 ks s^2 (+ residual: q s^2/(2 sp) for s <= sp, q (s - sp/2) beyond, q = (1-z) mu |sigma|).
+// 1/2 kn o^2 + 1/2 ks s^2 (+ the residual slider's spring, residual_friction()).
 // Under compression f_s (hence tau) depends on o while sigma does not depend on s, so the law is not
 // conservative there: a closed path in (o, s), counter-clockwise, does the net work on the joint
 // oint tau ds = -k tan(phi) x (integral of (s/sp)^2 over the enclosed area) (pre-peak, from dtau/do at
@@ -106,6 +107,7 @@ struct JointPointResponse {
   double d_max;                    // updated history in [0, 1]; 1 = this point has failed
   double energy;                   // stored energy per unit area [J/m2]
   double normal_part, shear_part;  // Dn^2 and Ds^2: which mode drives the damage (break classification)
+  double residual_cap;             // damaged and compressed: (1 - z) mu_res |sigma| (residual_friction())
   bool short_shear;                // the shear softening length was floored at this confinement
 };
 
@@ -165,18 +167,38 @@ inline JointPointResponse joint_point_response(const JointMaterial& m, const Joi
   r.tau_per_slip = z * fs / (sp + De * st);
   r.tau = r.tau_per_slip * s;
   r.energy = 0.5 * (r.sigma * o + r.tau * s);
-  if (sigma_c < 0.0 && m.residual_friction > 0.0) {
-    const double q = (1.0 - z) * m.residual_friction * (-sigma_c);
-    if (s < sp) {
-      r.tau_per_slip += q * inv_sp;
-      r.energy += 0.5 * q * s * s * inv_sp;
-    } else {
-      r.tau_per_slip += q / s;
-      r.energy += q * (s - 0.5 * sp);
-    }
-    r.tau = r.tau_per_slip * s;
-  }
+  if (sigma_c < 0.0) r.residual_cap = (1.0 - z) * m.residual_friction * (-sigma_c);
   return r;
+}
+
+// Residual friction at one damaged point (femdem.md 1b, the Y hydro variant's tau -> mu_res |sigma|): a
+// Coulomb slider with a stick spring. The traction is k_r (sv - anchor), projected onto the joint's plane
+// and capped at `cap` = (1 - z) mu_res |sigma| (JointPointResponse::residual_cap, 0 in tension); past the
+// cap the anchor follows the slip, so the friction dissipates what it does beyond its spring. The stored
+// energy, |t|^2 / (2 k_r), is bounded by cap^2 / (2 k_r) whatever the slip. k_r = k / 2: with the softened
+// shear stiffness (at most z k / 2) the point is never stiffer than the intact k, so the joint's step bound
+// holds. Why not the Y form (elastic in the slip, tau = cap along it): its energy grows with the slip and
+// follows the compression, so a joint that slips while lightly pressed and slides back while pressed
+// harder gains energy; in the wedge scene that pumped the notch-tip zone to pieces (docs/speed-accuracy.md).
+// anchor (3, in/out, global frame); t (3, out) is added to the point's traction. Returns the stored energy
+// per unit area.
+inline double residual_friction(double cap, double k_r, const double sv[3], const double n[3],
+                                double anchor[3], double t[3]) {
+  double e[3];
+  for (int c = 0; c < 3; ++c) e[c] = sv[c] - anchor[c];
+  const double en = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
+  for (int c = 0; c < 3; ++c) e[c] -= en * n[c];
+  const double stretch = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+  if (k_r * stretch > cap) {
+    const double reach = cap / k_r;  // the spring's stretch at the cap
+    const double scale = stretch > 0.0 ? reach / stretch : 0.0;
+    for (int c = 0; c < 3; ++c) {
+      e[c] *= scale;
+      anchor[c] = sv[c] - e[c];
+    }
+  }
+  for (int c = 0; c < 3; ++c) t[c] = k_r * e[c];
+  return 0.5 * k_r * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
 }
 
 }  // namespace rift::kernels

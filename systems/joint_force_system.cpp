@@ -27,10 +27,13 @@ Access JointForceSystem::access() const {
   using solid::col;
   const char* J = solid::joint_table;
   const char* V = solid::event_table;
+  std::vector<std::string> writes{
+      col(J, "corner_force"), col(J, "d_max"),         col(J, "broken"), col(J, "opening"), col(J, "slip"),
+      col(J, "damage"),       col(J, "stored_energy"), col(V, "step"),   col(V, "time"),    col(V, "joint"),
+      col(V, "mode"),         col(V, "centroid"),      col(V, "normal"), col(V, "area")};
+  if (store_.table(J).has("residual_anchor")) writes.push_back(col(J, "residual_anchor"));
   return {{col(solid::node_table, "x"), col(J, "nodes"), col(J, "material"), col(J, "initial_offset")},
-          {col(J, "corner_force"), col(J, "d_max"), col(J, "broken"), col(J, "opening"), col(J, "slip"),
-           col(J, "damage"), col(J, "stored_energy"), col(V, "step"), col(V, "time"), col(V, "joint"),
-           col(V, "mode"), col(V, "centroid"), col(V, "normal"), col(V, "area")},
+          writes,
           /*changes_topology=*/false};
 }
 
@@ -52,6 +55,7 @@ void JointForceSystem::run(const StepContext& ctx) {
   args.damage = joints.span<double>("damage");
   args.stored_energy = joints.span<double>("stored_energy");
   args.initial_offset = joints.span<double>("initial_offset");
+  if (joints.has("residual_anchor")) args.residual_anchor = joints.span<double>("residual_anchor");
   args.breaks = breaks_;
   args.break_count = &break_count_;
   parallel_for(joints.size(), grain, [&](size_t begin, size_t end) {

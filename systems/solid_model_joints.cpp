@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -81,6 +82,11 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
       joint_materials_.push_back(jm);
     }
     material[j] = it->second;
+  }
+  // The residual-friction slider's anchors (kernels/joint_law.hpp), only where some material has one.
+  if (std::any_of(joint_materials_.begin(), joint_materials_.end(),
+                  [](const kernels::JointMaterial& m) { return m.residual_friction > 0.0; })) {
+    joints.add<double>("residual_anchor", 3 * points);
   }
   if (spec_.initial_stress) set_joint_initial_state();
 }

@@ -23,7 +23,8 @@ inline constexpr const char* contact_state_table = "solid_contact_state";
 // solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),
 //            d_max (points per joint), broken (u8: 0 intact, 1 tensile, 2 shear, 3 initial crack),
 //            corner_force (9: the forces on side B's corners; side A's are minus these), opening, slip,
-//            damage, stored_energy (1 each), initial_offset (3, in-situ state; 0 without one) contact_force
+//            damage, stored_energy (1 each), initial_offset (3, in-situ state; 0 without one),
+//            residual_anchor (3 per point, only when a joint material has residual friction) contact_force
 //            (3, with contact only: the contact forces of the step, gathered per node), x_detect (3, with
 //            contact only: positions at the last contact detection)
 // solid_load_face: nodes (i32 x3), load (i32), corner_force (9)

@@ -400,7 +400,7 @@ RandomJoints random_joints(int points) {
 
 // Everything one call over the random joints produces.
 struct Outcome {
-  std::vector<double> d_max, force, opening, slip, damage, energy;
+  std::vector<double> d_max, force, opening, slip, damage, energy, anchor;
   std::vector<uint8_t> broken;
   std::vector<JointBreak> breaks = std::vector<JointBreak>(kRandomJoints);
   std::atomic<size_t> count{0};
@@ -412,24 +412,26 @@ void run_random(const RandomJoints& in, Softening rule, bool offsets, Kernel ker
   constexpr size_t J = kRandomJoints;
   r.d_max = in.d_max;
   r.broken = in.broken;
-  r.force.assign(9 * J, -1.0);  // side B per joint (side A is minus it)
+  r.anchor.assign(3 * static_cast<size_t>(in.points) * J, 0.0);  // the residual sliders start at rest
+  r.force.assign(9 * J, -1.0);                                   // side B per joint (side A is minus it)
   for (auto* out : {&r.opening, &r.slip, &r.damage, &r.energy}) out->assign(J, -1.0);
-  const JointArgs args{in.x,
-                       in.nodes,
-                       in.material,
-                       in.materials,
-                       &joint_rule(in.points),
-                       rule,
-                       r.d_max,
-                       r.broken,
-                       r.force,
-                       r.opening,
-                       r.slip,
-                       r.damage,
-                       r.energy,
-                       r.breaks,
-                       &r.count,
-                       offsets ? std::span<const double>(in.offsets) : std::span<const double>()};
+  JointArgs args{in.x,
+                 in.nodes,
+                 in.material,
+                 in.materials,
+                 &joint_rule(in.points),
+                 rule,
+                 r.d_max,
+                 r.broken,
+                 r.force,
+                 r.opening,
+                 r.slip,
+                 r.damage,
+                 r.energy,
+                 r.breaks,
+                 &r.count,
+                 offsets ? std::span<const double>(in.offsets) : std::span<const double>()};
+  args.residual_anchor = r.anchor;
   std::mt19937_64 pieces(5);
   for (size_t begin = 0; begin < J;) {
     const size_t end = split ? std::min(J, begin + 1 + pieces() % 9) : J;
@@ -469,6 +471,7 @@ double compare(const Outcome& ref, const Outcome& vec, int points) {
       close(vec.d_max[i], ref.d_max[i], 1.0);
       EXPECT_EQ(vec.d_max[i] >= 1.0, ref.d_max[i] >= 1.0);
       EXPECT_EQ(vec.d_max[i] == 0.0, ref.d_max[i] == 0.0);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(vec.anchor[3 * i + c], ref.anchor[3 * i + c]);
     }
   }
   return worst;

@@ -247,23 +247,46 @@ TEST(JointLaw, MixedModeEllipseAndContinuity) {
   EXPECT_NEAR(j.tau_x(), tau1, 1e-6 * kFt);
 }
 
-// Residual friction (the Y hydro variant): a fully softened point in compression transmits
-// mu_res |sigma| once slipped by sp, and half of it at sp / 2.
-TEST(JointLaw, ResidualFrictionOfSoftenedPoint) {
+// Residual friction (the Y hydro variant's tau -> mu_res |sigma|, as a slider with a slip history): a
+// nearly softened joint (D_max = 0.99 at every point: z = z(0.99), the secant shear nearly gone) is pressed
+// lightly, slid 3 sp along x, pressed 3 x harder, slid back and released: the cycle that pumped energy
+// into the wedge scene. The friction traction is the cap, (1 - z) mu_res |sigma|, against the sliding
+// direction on each slide (exactly: both slides go far past the slider's spring reach), and over the closed
+// cycle the work done on the joint is what the slider dissipates plus what its spring holds at the end
+// (below), to 1 % (what the secant branch's compression-shear coupling, a few z of it, adds or takes). The
+// elastic form of Y (before 2026-12-02) returned more on the way back than it took on the way out: -(q2 - q1)
+// 3 sp A.
+TEST(JointLaw, ResidualFrictionIsASliderThatDissipatesOverACompressionCycle) {
   JointMaterial m = limestone();
   m.residual_friction = 0.6;
-  const double Z = softening_integral();
-  const JointScales k = joint_scales(m, kH, Softening::energy_exact, Z);
-  const double o = -1e-7, sigma = kP / kH * o;
-  const double sp = 2 * kH * (kC - sigma * kTanPhi) / kP;
-  JointPointResponse r = joint_point_response(m, k, Softening::energy_exact, Z, o, 3 * sp, 1.0);
-  EXPECT_NEAR(r.sigma, sigma, 1e-9 * std::fabs(sigma));
-  EXPECT_NEAR(r.tau, 0.6 * std::fabs(sigma), 1e-9 * std::fabs(sigma));
-  r = joint_point_response(m, k, Softening::energy_exact, Z, o, 0.5 * sp, 1.0);
-  EXPECT_NEAR(r.tau, 0.3 * std::fabs(sigma), 1e-9 * std::fabs(sigma));
-  r = joint_point_response(m, k, Softening::energy_exact, Z, -o, 3 * sp, 1.0);  // tension: nothing
-  EXPECT_EQ(r.tau, 0.0);
-  EXPECT_EQ(r.sigma, 0.0);
+  OneJoint j(3, Softening::energy_exact, m);
+  const double D = 0.99, z = softening_z(D), k = kP / kH;
+  for (double& d : j.d_max) d = D;
+  const double o1 = -2e-8, o2 = 3 * o1;  // sigma = k o: -1.6 and -4.8 MPa
+  const double q1 = (1 - z) * 0.6 * k * -o1, q2 = (1 - z) * 0.6 * k * -o2;
+  const double slide = 3 * 2 * kH * (kC - k * o1 * kTanPhi) / kP;  // 3 sp at the light compression
+  const int n = 3000;
+  j.jump(0, 0, o1);
+  WorkMeter meter(j);
+  for (int i = 1; i <= n; ++i) j.jump(slide * i / n, 0, o1), meter.step(j);
+  const double secant_out =
+      joint_point_response(m, joint_scales(m, kH, Softening::energy_exact, softening_integral()),
+                           Softening::energy_exact, softening_integral(), o1, slide, D)
+          .tau;
+  EXPECT_NEAR(j.tau_x(), secant_out + q1, 1e-9 * q1);
+  for (int i = 1; i <= n; ++i) j.jump(slide, 0, o1 + (o2 - o1) * i / n), meter.step(j);
+  for (int i = n - 1; i >= 0; --i) j.jump(slide * i / n, 0, o2), meter.step(j);
+  EXPECT_NEAR(j.tau_x(), -q2, 1e-9 * q2);  // back at zero slip: only the friction, resisting the slide
+  for (int i = 1; i <= n; ++i) j.jump(0, 0, o2 + (o1 - o2) * i / n), meter.step(j);
+  EXPECT_FALSE(j.is_broken());
+  // Slides out (q1 past the spring's reach q1 / k_r), back (q2, after the spring's swing from +q1 / k_r to
+  // -q2 / k_r), the release (the spring sheds q2 -> q1, slipping), plus what the spring holds at the end.
+  const double kr = 0.5 * k;
+  const double expected = ((q1 + q2) * slide - (q1 * q1 + q1 * q2 + 0.5 * q2 * q2) / kr) * kArea;
+  record("residual_cycle_work_J", meter.work);
+  record("residual_cycle_expected_J", expected);
+  EXPECT_GT(meter.work, 0.0);
+  EXPECT_NEAR(meter.work / expected, 1.0, 0.01);
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -63,14 +63,21 @@ struct OneJoint {
   std::vector<JointBreak> breaks = std::vector<JointBreak>(4);
   std::atomic<size_t> break_count{0};
   std::vector<double> offset;  // initial offset (3), empty = none
+  std::vector<double> anchor;  // residual-friction anchors, 3 per point
   JointStatus status;
 
   explicit OneJoint(int points, Softening s = Softening::energy_exact, JointMaterial m = limestone())
-      : materials{m}, rule(&joint_rule(points)), softening(s), d_max(static_cast<size_t>(points), 0.0) {}
+      : materials{m},
+        rule(&joint_rule(points)),
+        softening(s),
+        d_max(static_cast<size_t>(points), 0.0),
+        anchor(3 * static_cast<size_t>(points), 0.0) {}
 
   JointArgs args() {
-    return {x,   nodes,   material, materials, rule,   softening, d_max,        broken,
-            row, opening, slip,     damage,    energy, breaks,    &break_count, offset};
+    JointArgs a{x,   nodes,   material, materials, rule,   softening, d_max,        broken,
+                row, opening, slip,     damage,    energy, breaks,    &break_count, offset};
+    a.residual_anchor = anchor;
+    return a;
   }
   void run() {
     status += g_kernel(args(), 0, 1);

@@ -74,7 +74,7 @@ struct JointArgs {
   // Optional input, 3 per joint: the initial offset o0 [m] (see above); empty = none.
   std::span<const double> initial_offset = {};
   // In/out, 3 x rule->points per joint: each point's residual-friction anchor (joint_law.hpp,
-  // residual_friction()), starts at 0. Required when a material has residual_friction > 0; else ignored.
+  // residual_friction()), starts at 0. Empty: the materials' residual friction is not applied.
   std::span<double> residual_anchor = {};
 };
 

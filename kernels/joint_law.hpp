@@ -181,7 +181,7 @@ inline JointPointResponse joint_point_response(const JointMaterial& m, const Joi
 // follows the compression, so a joint that slips while lightly pressed and slides back while pressed
 // harder gains energy; in the wedge scene that pumped the notch-tip zone to pieces (docs/speed-accuracy.md).
 // anchor (3, in/out, global frame); t (3, out) is added to the point's traction. Returns the stored energy
-// per unit area.
+// per unit area; what the slider dissipates is booked with the joints' (fracture_dissipation).
 inline double residual_friction(double cap, double k_r, const double sv[3], const double n[3],
                                 double anchor[3], double t[3]) {
   double e[3];

@@ -290,14 +290,18 @@ void process_group(const JointArgs& a, const size_t joint[4], int count, double 
   const MaterialV m = load_materials(a, joint);
   const ScalesV k = scales(m, g.h, a.softening, Z);
   // The residual-friction slider keeps a slip history (joint_law.hpp): a group with such a point goes
-  // through the scalar path from its state before this call. Damaged joints are few.
+  // through the scalar path from its state before this call. Damaged joints are few, and a group without
+  // residual friction (most scenes) saves nothing.
+  const int real = (1 << count) - 1;
+  const bool may_slide = (lanes(greater(m.mu, set1(0.0))) & real) != 0;
   const size_t P = static_cast<size_t>(a.rule->points);
   double saved[4][kMaxJointPoints];
-  for (int l = 0; l < count; ++l)
-    for (size_t q = 0; q < P; ++q) saved[l][q] = a.d_max[P * joint[l] + q];
+  if (may_slide)
+    for (int l = 0; l < count; ++l)
+      for (size_t q = 0; q < P; ++q) saved[l][q] = a.d_max[P * joint[l] + q];
   Sums t;
   integrate(a, joint, count, g, m, k, Z, t);
-  if ((lanes(t.slider) & ((1 << count) - 1)) != 0) {
+  if (may_slide && (lanes(t.slider) & real) != 0) {
     for (int l = 0; l < count; ++l)
       for (size_t q = 0; q < P; ++q) a.d_max[P * joint[l] + q] = saved[l][q];
     return scalar_group(a, joint, count, status);

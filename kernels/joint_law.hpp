@@ -189,9 +189,8 @@ inline double residual_friction(double cap, double k_r, const double sv[3], cons
   const double en = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
   for (int c = 0; c < 3; ++c) e[c] -= en * n[c];
   const double stretch = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-  if (k_r * stretch > cap) {
-    const double reach = cap / k_r;  // the spring's stretch at the cap
-    const double scale = stretch > 0.0 ? reach / stretch : 0.0;
+  if (k_r * stretch > cap) {  // slipping (stretch > 0 here): the spring keeps its reach cap / k_r
+    const double scale = cap / k_r / stretch;
     for (int c = 0; c < 3; ++c) {
       e[c] *= scale;
       anchor[c] = sv[c] - e[c];

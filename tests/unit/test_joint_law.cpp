@@ -269,11 +269,12 @@ TEST(JointLaw, ResidualFrictionIsASliderThatDissipatesOverACompressionCycle) {
   j.jump(0, 0, o1);
   WorkMeter meter(j);
   for (int i = 1; i <= n; ++i) j.jump(slide * i / n, 0, o1), meter.step(j);
-  const double secant_out =
-      joint_point_response(m, joint_scales(m, kH, Softening::energy_exact, softening_integral()),
-                           Softening::energy_exact, softening_integral(), o1, slide, D)
-          .tau;
+  const double Z = softening_integral();
+  const JointScales scales = joint_scales(m, kH, Softening::energy_exact, Z);
+  const double secant_out = joint_point_response(m, scales, Softening::energy_exact, Z, o1, slide, D).tau;
   EXPECT_NEAR(j.tau_x(), secant_out + q1, 1e-9 * q1);
+  // In tension there is nothing to cap at: the slider carries no traction.
+  EXPECT_EQ(joint_point_response(m, scales, Softening::energy_exact, Z, -o1, slide, D).residual_cap, 0.0);
   for (int i = 1; i <= n; ++i) j.jump(slide, 0, o1 + (o2 - o1) * i / n), meter.step(j);
   for (int i = n - 1; i >= 0; --i) j.jump(slide * i / n, 0, o2), meter.step(j);
   EXPECT_NEAR(j.tau_x(), -q2, 1e-9 * q2);  // back at zero slip: only the friction, resisting the slide

@@ -176,16 +176,19 @@ void Simulation::restart_from_latest() {
 
 void Simulation::step_once() {
   const StepContext ctx{step_, time(), dt_};
-  if (has_background_)
-    graph_->in_arena([&] {
-      for (const auto& m : world_->models) m->before_step(ctx);
-    });
+  // The hooks run in the graph's arena when a model works beside the graph (its task must live there).
+  auto hooks = [&](auto&& call) {
+    if (has_background_)
+      graph_->in_arena([&] {
+        for (const auto& m : world_->models) call(*m);
+      });
+    else
+      for (const auto& m : world_->models) call(*m);
+  };
+  hooks([&](Model& m) { m.before_step(ctx); });
   graph_->run_step(ctx);
   ++step_;
-  if (has_background_)
-    graph_->in_arena([&] {
-      for (const auto& m : world_->models) m->after_step(ctx);
-    });
+  hooks([&](Model& m) { m.after_step(ctx); });
   const StepContext after{step_, time(), dt_, step_ == total_steps_};
   for (const auto& m : world_->models)
     if (auto diagnosis = m->check_health(after))

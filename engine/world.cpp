@@ -67,7 +67,8 @@ namespace {
 
 // A fluid on its own mesh around the solid (scene.fluid->mesh, required with a solid), and the coupling.
 // The run's step is the solid's: fluid.dt / substeps.
-void add_coupled_fluid(World& world, const Scene& scene) {
+// conversion: the solid's continuous meshes (non-null with fluid.adapt, whose mesh follows its surface).
+void add_coupled_fluid(World& world, const Scene& scene, MeshConversionModel* conversion) {
   const FluidSpec& fluid = *scene.fluid;
   const FluidSolidSpec& spec = *scene.fluid_solid;
   auto& solid = static_cast<SolidModel&>(*world.models.front());
@@ -89,8 +90,15 @@ void add_coupled_fluid(World& world, const Scene& scene) {
                     scene.time.end, fluid.dt, windows, std::ceil(windows) * fluid.dt));
   spdlog::info("fluid-solid coupling: {} solid steps of {:.6g} s per fluid step of {:.6g} s{}", substeps,
                fluid.dt / static_cast<double>(substeps), fluid.dt, spec.substeps > 0 ? "" : " (automatic)");
-  world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh));
-  order_along_curve(*world.fluid_mesh);
+  std::unique_ptr<FluidMeshAdapter> adapter;
+  if (fluid.adapt) {  // the mesh around the solid as it is at t = 0, remade as it deforms and breaks
+    adapter =
+        std::make_unique<FluidMeshAdapter>(world.store, *conversion, *fluid.mesh->generate, *fluid.adapt);
+    world.fluid_mesh = std::make_unique<TetMesh>(adapter->make());
+  } else {
+    world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh));
+    order_along_curve(*world.fluid_mesh);
+  }
   const char* F = fluid::tet_table;
   auto model = std::make_unique<FluidModel>(
       world.store, *world.fluid_mesh, fluid, substeps,
@@ -98,7 +106,7 @@ void add_coupled_fluid(World& world, const Scene& scene) {
                                fluid::col(F, "solid_velocity")});
   FluidModel& f = *model;
   world.models.push_back(std::move(model));
-  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec));
+  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec, std::move(adapter)));
 }
 
 }  // namespace
@@ -115,15 +123,22 @@ std::unique_ptr<World> build_world(const Scene& scene) {
   world->mesh_quality = measure_quality(world->mesh);
   if (scene.solid)
     world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  // The continuous meshes only when something consumes them: the adaptive fluid mesh (before the fluid,
+  // whose first mesh follows the solid's surface), or an output that asks for the surface (last).
+  MeshConversionModel* conversion = nullptr;
+  auto add_conversion = [&] {
+    auto model = std::make_unique<MeshConversionModel>(world->store, world->mesh,
+                                                       notch_surfaces(scene.mesh, world->mesh));
+    conversion = model.get();
+    world->models.push_back(std::move(model));
+  };
+  if (scene.solid && scene.fluid && scene.fluid->adapt) add_conversion();
   if (scene.fluid && scene.solid) {
-    add_coupled_fluid(*world, scene);
+    add_coupled_fluid(*world, scene, conversion);
   } else if (scene.fluid) {
     world->models.push_back(std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
   }
-  // The continuous meshes only when something consumes them (today: an output that asks for the surface).
-  if (scene.solid && scene.output.surface)
-    world->models.push_back(std::make_unique<MeshConversionModel>(world->store, world->mesh,
-                                                                  notch_surfaces(scene.mesh, world->mesh)));
+  if (scene.solid && scene.output.surface && !conversion) add_conversion();
   return world;
 }
 

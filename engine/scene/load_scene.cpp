@@ -55,6 +55,10 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
       doc.error("fluid",
                 "a fluid.mesh when the scene also has a solid (the fluid's own mesh, covering the solid)",
                 "no fluid.mesh; the top-level mesh is the solid's");
+    else if (!has_solid && scene.fluid->adapt)
+      doc.error("fluid",
+                "fluid.adapt only in a scene with a solid (the mesh is refined at the solid's surface)",
+                "fluid.adapt without a solid section");
     else if (!has_solid && fluid_mesh && has_mesh)
       doc.error("mesh", "no top-level mesh when fluid.mesh is given (nothing else would use it)",
                 "keep one of mesh and fluid.mesh");

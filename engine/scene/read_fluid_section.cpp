@@ -98,6 +98,32 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
                                            sec.key_path("boundaries") + "[" + std::to_string(j) + "])");
         break;
       }
+  if (sec.has("adapt")) {
+    MapReader a = sec.section("adapt", false);
+    f.adapt = FluidAdaptSpec{a.integer("interval", IntRule{0, INT32_MAX}, 0)};
+    f.adapt->boundary = f.adapt->notch = f.adapt->fracture = false;
+    for (const std::string& name : a.string_list("surfaces", {"boundary", "notch", "fracture"})) {
+      if (name == "boundary")
+        f.adapt->boundary = true;
+      else if (name == "notch")
+        f.adapt->notch = true;
+      else if (name == "fracture")
+        f.adapt->fracture = true;
+      else
+        a.error("surfaces",
+                "a list of boundary, notch and fracture (the parts of the solid's surface to refine at)");
+    }
+    a.finish();
+    // It remakes the mesh with the box generator's sizing, measured from the solid's surface.
+    const MeshGenerateSpec* g = f.mesh && f.mesh->generate ? &*f.mesh->generate : nullptr;
+    if (!g || g->shape != MeshGenerateSpec::Shape::box || g->cells || !g->notches.empty())
+      sec.error(
+          f.mesh ? "mesh" : "adapt",
+          "with fluid.adapt, a fluid.mesh.generate box with size_min and size_max and no cells or notches "
+          "(the adaptive mesh is that box, its size_min at the solid's surface)");
+  } else {
+    sec.declare("adapt");
+  }
   f.ghia_cavity = sec.boolean("ghia_cavity", false);
   sec.finish();
   return f;

@@ -193,15 +193,27 @@ struct FluidBoundarySpec {
   std::array<bool, 3> parabolic{};
 };
 
+// The adaptive fluid mesh around an immersed solid (docs/fluid.md, "Adaptive mesh"): fluid.mesh.generate
+// is a box whose size_min applies at the solid's surface (outer faces, notches and cracks), growing by
+// `grading` per unit distance up to size_max. The mesh is made around the solid at t = 0 and remade every
+// `interval` fluid steps (0: never again), the fluid's fields interpolated onto the new mesh.
+struct FluidAdaptSpec {
+  int64_t interval = 0;
+  // Which parts of the solid's surface the mesh is refined at (mesh_conversion.hpp's tags): its outer
+  // boundary, its pre-existing notches, the faces of broken joints.
+  bool boundary = true, notch = true, fracture = true;
+};
+
 // Incompressible Navier-Stokes (systems/fluid, docs/fluid.md) on its own mesh.
 struct FluidSpec {
   enum class Coupling { schur_gmres, projection };  // fluid::PressureCoupling order
   enum class OnPicardFailure { stop, continue_run };
-  std::optional<MeshSpec> mesh;  // absent: the top-level mesh
-  double density = 1.0;          // [kg/m^3]
-  double viscosity = 0.0;        // dynamic viscosity [Pa s]
-  double dt = 0.0;               // fluid time step [s]
-  double theta = 1.0;            // 1 backward Euler, 0.5 Crank-Nicolson
+  std::optional<MeshSpec> mesh;         // absent: the top-level mesh
+  std::optional<FluidAdaptSpec> adapt;  // absent: the mesh is fixed
+  double density = 1.0;                 // [kg/m^3]
+  double viscosity = 0.0;               // dynamic viscosity [Pa s]
+  double dt = 0.0;                      // fluid time step [s]
+  double theta = 1.0;                   // 1 backward Euler, 0.5 Crank-Nicolson
   bool convection = true;
   bool supg = true;
   Coupling coupling = Coupling::schur_gmres;

@@ -41,19 +41,24 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
         solid_tets.span<double>("volume_at_exchange"), pairs_.solid_dilatation, 0, solid_tets.size());
   }
   ft.add<double>("velocity_before", 3);
-  const size_t nf = ft.size(), ns = store_.table(solid::tet_table).size();
-  pairs_.fluid_ids.resize(nf);
+  const size_t ns = store_.table(solid::tet_table).size();
   pairs_.solid_ids.resize(ns);
-  std::iota(pairs_.fluid_ids.begin(), pairs_.fluid_ids.end(), 0);
   std::iota(pairs_.solid_ids.begin(), pairs_.solid_ids.end(), 0);
-  // The fluid mesh does not move: its boxes once.
+  pairs_.solid_lo.resize(3 * ns);
+  pairs_.solid_hi.resize(3 * ns);
+  pairs_.solid_velocity.resize(3 * ns);
+  fluid_mesh_changed();
+}
+
+// The fluid mesh does not move: its boxes once per mesh.
+void SolidToFluidSystem::fluid_mesh_changed() {
+  const size_t nf = solver_.volumes().size();
+  pairs_.fluid_ids.resize(nf);
+  std::iota(pairs_.fluid_ids.begin(), pairs_.fluid_ids.end(), 0);
   pairs_.fluid_lo.resize(3 * nf);
   pairs_.fluid_hi.resize(3 * nf);
   kernels::tet_bounding_boxes(solver_.nodes(), solver_.tets(), pairs_.fluid_ids, pairs_.fluid_lo,
                               pairs_.fluid_hi, 0, nf);
-  pairs_.solid_lo.resize(3 * ns);
-  pairs_.solid_hi.resize(3 * ns);
-  pairs_.solid_velocity.resize(3 * ns);
   pairs_.fluid_velocity.resize(3 * nf);
   pairs_.first.resize(nf + 1);
   pairs_.pair_weight.resize(nf);

@@ -57,6 +57,8 @@ class SolidToFluidSystem : public System {
   Access access() const override;
   void run(const StepContext& ctx) override;
   void exchange();  // unconditionally (the initial exchange at t = 0)
+  // The fluid's mesh was remade (fluid.adapt): its tet boxes and the per-tet scratch again.
+  void fluid_mesh_changed();
   // After a restart: hand the stored absorption and solid velocity back to the solver.
   void restore_solver();
   // After a restart of the concurrent coupling: the last exchange's pairs, from the solid's node
@@ -78,6 +80,7 @@ class FluidToSolidSystem : public System {
   FluidToSolidSystem(Store& store, ExchangeSettings settings, ExchangePairs& pairs,
                      std::span<const double> fluid_volume)
       : store_(store), settings_(settings), pairs_(pairs), fluid_volume_(fluid_volume) {}
+  void set_fluid_volume(std::span<const double> fluid_volume) { fluid_volume_ = fluid_volume; }
   std::string name() const override { return "fluid_to_solid"; }
   Access access() const override;
   void run(const StepContext& ctx) override;

@@ -19,8 +19,8 @@ int64_t FluidSolidModel::automatic_substeps(double fluid_dt, double solid_stable
 }
 
 FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid,
-                                 const FluidSolidSpec& spec)
-    : store_(store), spec_(spec) {
+                                 const FluidSolidSpec& spec, std::unique_ptr<FluidMeshAdapter> adapter)
+    : store_(store), fluid_(fluid), spec_(spec), adapter_(std::move(adapter)) {
   settings_.substeps = fluid.substeps();
   settings_.beta = spec.beta;
   settings_.rho = fluid.spec().density;
@@ -81,6 +81,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
 FluidSolidModel::~FluidSolidModel() = default;
 
 void FluidSolidModel::restored(const StepContext&) {
+  if (adapter_) fluid_mesh_changed();  // the fluid model rebuilt its solver on the checkpoint's mesh
   to_fluid_->restore_solver();
   if (concurrent_) to_fluid_->rebuild_pairs(store_.table(solid::node_table).span<double>("x_at_exchange"));
 }
@@ -103,7 +104,19 @@ void FluidSolidModel::before_step(const StepContext& at) {
 // coupling but for the solid's time the fluid sees. The launch waits for the next step's before_step, so
 // that between steps (outputs, health checks, a checkpoint at a window's end) no task is running.
 void FluidSolidModel::after_step(const StepContext& taken) {
-  if (!concurrent_ || (taken.step + 1) % settings_.substeps != 0) return;
+  if ((taken.step + 1) % settings_.substeps != 0) return;
+  const int64_t window = (taken.step + 1) / settings_.substeps;
+  const double t_end = static_cast<double>(taken.step + 1) * taken.dt;
+  if (!concurrent_) {
+    // Sequential: the window's exchanges and fluid step ran in the graph. A new mesh gets the solid's
+    // state at once (the same exchange as the graph's, at the same solid state), so outputs, health
+    // checks and checkpoints between windows see a consistent fluid.
+    if (adapter_ && adapter_->due_after(window)) {
+      adapt_fluid_mesh(t_end);
+      to_fluid_->exchange();
+    }
+    return;
+  }
   concurrent_->join();
   store_.table(coupling::state_table).span<double>("fluid_ahead")[0] = 0.0;
   auto timed = [](SystemTiming& t, auto&& fn) {
@@ -113,10 +126,24 @@ void FluidSolidModel::after_step(const StepContext& taken) {
     ++t.calls;
   };
   timed(to_solid_time_, [&] { to_solid_->exchange(); });
+  if (adapter_ && adapter_->due_after(window)) adapt_fluid_mesh(t_end);
   timed(to_fluid_time_, [&] {
     to_fluid_->exchange();
     keep_exchange_positions();
   });
+}
+
+void FluidSolidModel::adapt_fluid_mesh(double time) {
+  const auto t0 = std::chrono::steady_clock::now();
+  fluid_.remesh(adapter_->make(), time);
+  fluid_mesh_changed();
+  remesh_time_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++remesh_time_.calls;
+}
+
+void FluidSolidModel::fluid_mesh_changed() {
+  to_fluid_->fluid_mesh_changed();
+  to_solid_->set_fluid_volume(fluid_.solver().volumes());
 }
 
 // Mid-window (a checkpoint, the end of a stopped run): the stored fluid state becomes the window's end.
@@ -136,11 +163,14 @@ Access FluidSolidModel::background_access() const {
 }
 
 std::vector<SystemTiming> FluidSolidModel::timings() const {
-  if (!concurrent_) return {};
-  return {{"fluid_step", concurrent_->task_seconds(), concurrent_->steps()},
-          {"fluid_wait", concurrent_->wait_seconds(), concurrent_->steps()},
-          to_solid_time_,
-          to_fluid_time_};
+  std::vector<SystemTiming> out;
+  if (concurrent_)
+    out = {{"fluid_step", concurrent_->task_seconds(), concurrent_->steps()},
+           {"fluid_wait", concurrent_->wait_seconds(), concurrent_->steps()},
+           to_solid_time_,
+           to_fluid_time_};
+  if (adapter_) out.push_back(remesh_time_);
+  return out;
 }
 
 std::optional<std::string> FluidSolidModel::check_health(const StepContext& after) {

@@ -16,6 +16,7 @@
 #include "engine/model.hpp"
 #include "engine/scene/scene.hpp"
 #include "systems/coupling/concurrent_fluid_step.hpp"
+#include "systems/coupling/fluid_mesh_adapter.hpp"
 #include "systems/coupling/fluid_solid_exchange.hpp"
 #include "systems/fluid/fluid_model.hpp"
 #include "systems/solid_model.hpp"
@@ -24,7 +25,10 @@ namespace rift {
 
 class FluidSolidModel : public Model {
  public:
-  FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid, const FluidSolidSpec& spec);
+  // adapter: fluid.adapt (else null); the fluid is remeshed after every adapter->interval() fluid steps,
+  // at the window's end, between the fluid's force on the solid and the solid's state going to the fluid.
+  FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid, const FluidSolidSpec& spec,
+                  std::unique_ptr<FluidMeshAdapter> adapter = nullptr);
   ~FluidSolidModel() override;
 
   std::string name() const override { return "fluid_solid"; }
@@ -47,8 +51,12 @@ class FluidSolidModel : public Model {
 
  private:
   void keep_exchange_positions();  // concurrent: solid_node.x_at_exchange = x
+  // fluid.adapt: the fluid's mesh remade around the solid now, and what the exchange derived from it.
+  void adapt_fluid_mesh(double time);
+  void fluid_mesh_changed();
 
   Store& store_;
+  FluidModel& fluid_;
   FluidSolidSpec spec_;
   ExchangeSettings settings_;
   double solid_volume_ = 0.0;  // of the solid at t = 0
@@ -58,6 +66,8 @@ class FluidSolidModel : public Model {
   FluidStepSystem* fluid_step_ = nullptr;            // concurrent only: the fluid's step, driven from here
   std::unique_ptr<ConcurrentFluidStep> concurrent_;  // concurrent only
   SystemTiming to_solid_time_{"fluid_to_solid"}, to_fluid_time_{"solid_to_fluid"};
+  std::unique_ptr<FluidMeshAdapter> adapter_;  // fluid.adapt only
+  SystemTiming remesh_time_{"fluid_remesh"};
 };
 
 }  // namespace rift

@@ -95,44 +95,58 @@ constexpr double kGhiaV[17] = {0.0,      -0.05906, -0.07391, -0.08864, -0.10313,
 
 FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec, int64_t substeps,
                        std::vector<std::string> coupling_reads)
-    : store_(store), spec_(spec), substeps_(substeps) {
-  auto bcs = boundaries_for(spec, mesh);
-  try {
-    solver_ = std::make_unique<fluid::FluidSolver>(mesh, settings_for(spec), std::move(bcs));
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw Error(std::string("fluid: ") + e.what());
-  }
+    : store_(store), spec_(spec), substeps_(substeps), surface_names_(mesh.surface_names) {
+  build_solver(mesh);
   const auto v0 = spec.initial_velocity;
   solver_->set_velocity([v0](const fluid::Vec3&, double) { return v0; });
-  if (spec.body_force != std::array<double, 3>{}) {
-    const auto f = spec.body_force;
-    solver_->set_body_force([f](const fluid::Vec3&, double) { return f; });
-  }
-  const size_t nn = solver_->node_count(), nt = solver_->volumes().size();
   Table& nodes = store_.add_table(fluid::node_table);
   nodes.add<double>("x", 3);
   nodes.add<double>("velocity", 3);
   nodes.add<double>("pressure", 1);
   nodes.add<double>("previous_velocity", 3);
-  nodes.resize(nn);
-  std::copy(solver_->nodes().begin(), solver_->nodes().end(), nodes.span<double>("x").begin());
-  std::copy(solver_->velocity().begin(), solver_->velocity().end(), nodes.span<double>("velocity").begin());
   Table& tets = store_.add_table(fluid::tet_table);
   tets.add<int32_t>("nodes", 4);
   tets.add<double>("pressure_matrix_coefficient", 1);
-  tets.resize(nt);
-  std::copy(solver_->tets().begin(), solver_->tets().end(), tets.span<int32_t>("nodes").begin());
+  if (spec.adapt) {
+    Table& faces = store_.add_table(fluid::boundary_table);
+    faces.add<int32_t>("nodes", 3);
+    faces.add<int32_t>("surface", 1);
+  }
   Table& step = store_.add_table(fluid::step_table);
   for (const char* c : fluid::step_columns) step.add<double>(c, 1);
   step.add<double>("has_previous", 1);
+  if (spec.adapt) step.add<double>("remeshes", 1);
   step.resize(1);
+  store_mesh(mesh);
+  const auto u = solver_->velocity();
+  std::copy(u.begin(), u.end(), nodes.span<double>("velocity").begin());
   step_ = std::make_unique<FluidStepSystem>(store_, *solver_, substeps_, std::move(coupling_reads));
+}
 
-  // P1 gradients and sizes for the per-cell output fields.
+void FluidModel::build_solver(const TetMesh& mesh) {
+  auto bcs = boundaries_for(spec_, mesh);
+  try {
+    fluid::FluidSolver solver(mesh, settings_for(spec_), std::move(bcs));
+    if (solver_)
+      *solver_ = std::move(solver);
+    else
+      solver_ = std::make_unique<fluid::FluidSolver>(std::move(solver));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(std::string("fluid: ") + e.what());
+  }
+  if (spec_.body_force != std::array<double, 3>{}) {
+    const auto f = spec_.body_force;
+    solver_->set_body_force([f](const fluid::Vec3&, double) { return f; });
+  }
+}
+
+// P1 gradients and sizes for the per-cell output fields.
+void FluidModel::prepare_cell_geometry() {
   const auto x = solver_->nodes();
   const auto conn = solver_->tets();
+  const size_t nn = solver_->node_count(), nt = solver_->volumes().size();
   grad_.assign(12 * nt, 0.0);
   h_.assign(nt, 0.0);
   node_volume_.assign(nn, 0.0);
@@ -261,7 +275,7 @@ void FluidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
              nodes.size(),
              tets.span<int32_t>("nodes").data(),
              tets.size(),
-             0,
+             static_cast<uint64_t>(mesh_revision()),
              false,
              {}};
   if (wants_field(fields, "velocity"))
@@ -311,6 +325,7 @@ void FluidModel::summarize(nlohmann::json& summary) const {
   auto& s = summary["fluid"];
   s["nodes"] = solver_->node_count();
   s["tets"] = solver_->volumes().size();
+  if (spec_.adapt) s["remeshes"] = mesh_revision();
   s["dt"] = spec_.dt;
   s["kinetic_energy"] = kinetic_energy();
   s["picard_failures"] = static_cast<int64_t>(v("picard_failures"));
@@ -333,7 +348,16 @@ void FluidModel::summarize(nlohmann::json& summary) const {
   }
 }
 
+int64_t FluidModel::mesh_revision() const {
+  return spec_.adapt ? static_cast<int64_t>(store_.table(fluid::step_table).span<const double>("remeshes")[0])
+                     : 0;
+}
+
 void FluidModel::restored(const StepContext& at) {
+  if (spec_.adapt) {  // the checkpoint's mesh, maybe not the scene's first one
+    build_solver(mesh_from_store());
+    prepare_cell_geometry();
+  }
   const Table& nodes = store_.table(fluid::node_table);
   const bool previous = store_.table(fluid::step_table).span<const double>("has_previous")[0] != 0.0;
   solver_->restore_state(

@@ -51,6 +51,13 @@ class FluidModel : public Model {
   void summarize(nlohmann::json& summary) const override;
   void restored(const StepContext& at) override;
 
+  // fluid.adapt: `mesh` (same box and surfaces) replaces the fluid's mesh at `time`; velocity, pressure and
+  // the previous velocity are interpolated (P1) onto it. The solver object stays (references to it hold);
+  // its spans (nodes, tets, volumes, ...) change. The coupling refreshes what it derived from the mesh.
+  void remesh(const TetMesh& mesh, double time);
+  // How many times the mesh was remade (0 without fluid.adapt).
+  int64_t mesh_revision() const;
+
   const fluid::FluidSolver& solver() const { return *solver_; }
   fluid::FluidSolver& solver() { return *solver_; }
   const FluidSpec& spec() const { return spec_; }
@@ -63,7 +70,11 @@ class FluidModel : public Model {
   GhiaErrors ghia_errors() const;
 
  private:
-  void cell_fields();  // divergence_ and cfl_ from the current velocity
+  void cell_fields();                      // divergence_ and cfl_ from the current velocity
+  void build_solver(const TetMesh& mesh);  // a new solver on `mesh` (in place of the old one, if any)
+  void prepare_cell_geometry();            // grad_, h_, node_volume_ from the solver's mesh
+  void store_mesh(const TetMesh& mesh);    // the fluid tables' rows, mesh columns and boundary faces
+  TetMesh mesh_from_store() const;         // fluid.adapt: the mesh the store holds
 
   Store& store_;
   FluidSpec spec_;
@@ -73,6 +84,7 @@ class FluidModel : public Model {
   System* before_ = nullptr;
   System* after_ = nullptr;
   bool handed_over_ = false;
+  std::vector<std::string> surface_names_;      // the mesh's (a remesh keeps them)
   std::vector<double> grad_, h_, node_volume_;  // P1 gradients (12 per tet), longest edge, lumped volume
   std::vector<double> divergence_, cfl_;        // output scratch
 };

@@ -146,6 +146,8 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
 }
 
 FluidSolver::~FluidSolver() = default;
+FluidSolver::FluidSolver(FluidSolver&&) noexcept = default;
+FluidSolver& FluidSolver::operator=(FluidSolver&&) noexcept = default;
 
 void FluidSolver::set_velocity(const VectorField& u0) {
   const size_t nn = node_count();

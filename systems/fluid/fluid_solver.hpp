@@ -109,6 +109,8 @@ class FluidSolver {
  public:
   FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vector<FluidBoundary> boundaries);
   ~FluidSolver();
+  FluidSolver(FluidSolver&&) noexcept;
+  FluidSolver& operator=(FluidSolver&&) noexcept;  // a remeshed fluid (FluidModel::remesh)
 
   // Coupling hooks, one value per tet, zero by default: absorption sigma [kg/(m^3 s)] (implicit, relaxes
   // u towards target), target velocity u_s (3 per tet), momentum source s [N/m^3] (3 per tet).

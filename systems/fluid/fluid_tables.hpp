@@ -9,7 +9,10 @@
 // fluid_step: one row, the last step's report: picard_iterations, converged (1/0), velocity_iterations,
 //            schur_iterations, pressure_iterations, amg_setups, velocity_change, pressure_change,
 //            divergence_l2, divergence_max, cfl; and running figures over the run: picard_failures, max_cfl,
-//            max_divergence; has_previous (1/0: previous_velocity is valid)
+//            max_divergence; has_previous (1/0: previous_velocity is valid); with fluid.adapt, remeshes (the
+//            mesh's revision: how many times it was remade)
+// fluid_boundary (fluid.adapt only): nodes (i32 x3), surface (i32, index into the mesh's surface names):
+//            the boundary triangles, so a restart rebuilds the solver on the mesh the store holds
 #include <string>
 
 namespace rift::fluid {
@@ -17,6 +20,7 @@ namespace rift::fluid {
 inline constexpr const char* node_table = "fluid_node";
 inline constexpr const char* tet_table = "fluid_tet";
 inline constexpr const char* step_table = "fluid_step";
+inline constexpr const char* boundary_table = "fluid_boundary";
 
 inline constexpr const char* step_columns[] = {"picard_iterations",
                                                "converged",

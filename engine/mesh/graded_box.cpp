@@ -1,0 +1,54 @@
+#include "engine/mesh/graded_box.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/error.hpp"
+#include "engine/mesh/surface_distance.hpp"
+
+namespace rift {
+namespace {
+
+// A boundary triangle lies on the box face whose plane holds its three nodes (box-plane coordinates come
+// out of Mesh_3 exactly; the tolerance only guards round-off).
+int32_t classify(const GradedBoxSpec& spec, const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
+  const double tol =
+      1e-9 * std::max({spec.hi[0] - spec.lo[0], spec.hi[1] - spec.lo[1], spec.hi[2] - spec.lo[2]});
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) {
+      const double plane = side ? spec.hi[a] : spec.lo[a];
+      bool in_plane = true;
+      for (const int32_t v : tri) in_plane = in_plane && std::abs(mesh.nodes[v][a] - plane) <= tol;
+      if (in_plane) return 2 * a + side;
+    }
+  throw Error("graded box: internal error, a boundary triangle lies on no face of the box");
+}
+
+}  // namespace
+
+TetMesh generate_graded_box(const GradedBoxSpec& spec, std::span<const double> surface, Mesh3Stats* stats) {
+  for (int d = 0; d < 3; ++d)
+    if (!(spec.hi[d] > spec.lo[d]))
+      throw Error("graded box: the box must have a positive extent on every axis");
+  if (!(spec.size_min > 0.0) || !(spec.size_max >= spec.size_min) || !(spec.grading > 0.0))
+    throw Error("graded box: need 0 < size_min <= size_max and grading > 0");
+  const SurfaceDistance distance(surface);
+  PolyhedralMeshInput in;
+  const std::vector<std::array<double, 2>> rectangle = {
+      {spec.lo[0], spec.lo[1]}, {spec.hi[0], spec.lo[1]}, {spec.hi[0], spec.hi[1]}, {spec.lo[0], spec.hi[1]}};
+  in.patches.push_back(extruded_polygon(rectangle, spec.lo[2], spec.hi[2], [](double s, double t, double w) {
+    return Vec3{s, t, w};
+  }));
+  in.feature_angle_deg = 1.0;  // the box's edges turn by 90 degrees, its coplanar triangles by round-off
+  in.size = [&](const Vec3& p) {
+    return std::min(spec.size_max, spec.size_min + spec.grading * distance(p));
+  };
+  in.seed = spec.seed;
+  in.surface_names = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  in.classify = [&](const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
+    return classify(spec, mesh, tri);
+  };
+  return mesh_polyhedron(in, stats);
+}
+
+}  // namespace rift

@@ -1,0 +1,149 @@
+// The adaptive fluid mesh (FluidSpec::adapt, docs/fluid.md "Adaptive mesh"): a new mesh replaces the
+// solver's, the fields carried over by P1 interpolation, and a restart finds the mesh in the store.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "engine/core/error.hpp"
+#include "kernels/contact_broad_phase.hpp"
+#include "kernels/fluid_solid_exchange.hpp"
+#include "kernels/volume_fraction.hpp"
+#include "systems/fluid/fluid_model.hpp"
+#include "systems/fluid/fluid_tables.hpp"
+
+namespace rift {
+
+namespace {
+
+std::vector<double> flat_nodes(const TetMesh& mesh) {
+  std::vector<double> x;
+  x.reserve(3 * mesh.nodes.size());
+  for (const auto& p : mesh.nodes) x.insert(x.end(), p.begin(), p.end());
+  return x;
+}
+
+// P1 interpolation of `field` (`components` per node of the old mesh) at `points`. Every point must lie in
+// the old mesh (both meshes fill the same box; 1e-9 in barycentric terms absorbs round-off on its faces).
+std::vector<double> interpolate(std::span<const double> old_x, std::span<const int32_t> old_tets,
+                                std::span<const double> field, size_t components,
+                                std::span<const double> points,
+                                std::span<const kernels::CouplingPair> candidates) {
+  const size_t n_old = old_x.size() / 3, n_new = points.size() / 3;
+  std::vector<double> one(n_old), out_one(n_new), out(components * n_new);
+  for (size_t c = 0; c < components; ++c) {
+    for (size_t i = 0; i < n_old; ++i) one[i] = field[components * i + c];
+    const size_t outside =
+        kernels::interpolate_p1_at_points(old_x, old_tets, one, points, candidates, out_one);
+    if (outside > 0)
+      throw Error(
+          fmt::format("fluid remesh: {} nodes of the new mesh lie outside the old one (both should fill "
+                      "the box of fluid.mesh.generate); an internal error, please report the scene",
+                      outside));
+    for (size_t i = 0; i < n_new; ++i) out[components * i + c] = out_one[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+// The store's mesh tables from `mesh` (every column zeroed first: the coupling refills its own), and the
+// per-cell geometry of the outputs.
+void FluidModel::store_mesh(const TetMesh& mesh) {
+  const size_t nn = mesh.nodes.size(), nt = mesh.tets.size();
+  Table& nodes = store_.table(fluid::node_table);
+  Table& tets = store_.table(fluid::tet_table);
+  nodes.resize(0);
+  nodes.resize(nn);
+  tets.resize(0);
+  tets.resize(nt);
+  const auto x = flat_nodes(mesh);
+  std::copy(x.begin(), x.end(), nodes.span<double>("x").begin());
+  auto conn = tets.span<int32_t>("nodes");
+  for (size_t t = 0; t < nt; ++t) std::copy(mesh.tets[t].begin(), mesh.tets[t].end(), &conn[4 * t]);
+  if (spec_.adapt) {
+    Table& faces = store_.table(fluid::boundary_table);
+    faces.resize(mesh.triangles.size());
+    auto fn = faces.span<int32_t>("nodes");
+    auto fs = faces.span<int32_t>("surface");
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+      std::copy(mesh.triangles[f].begin(), mesh.triangles[f].end(), &fn[3 * f]);
+      fs[f] = mesh.triangle_surface[f];
+    }
+  }
+  prepare_cell_geometry();
+}
+
+// The mesh as the store holds it (the last remesh's, or the checkpoint's on a restart).
+TetMesh FluidModel::mesh_from_store() const {
+  TetMesh mesh;
+  const Table& nodes = store_.table(fluid::node_table);
+  const Table& tets = store_.table(fluid::tet_table);
+  const Table& faces = store_.table(fluid::boundary_table);
+  const auto x = nodes.span<const double>("x");
+  const auto conn = tets.span<const int32_t>("nodes");
+  const auto fn = faces.span<const int32_t>("nodes");
+  const auto fs = faces.span<const int32_t>("surface");
+  mesh.nodes.resize(nodes.size());
+  for (size_t n = 0; n < nodes.size(); ++n) mesh.nodes[n] = {x[3 * n], x[3 * n + 1], x[3 * n + 2]};
+  mesh.tets.resize(tets.size());
+  for (size_t t = 0; t < tets.size(); ++t)
+    mesh.tets[t] = {conn[4 * t], conn[4 * t + 1], conn[4 * t + 2], conn[4 * t + 3]};
+  mesh.tet_region.assign(tets.size(), 0);
+  mesh.region_names = {"domain"};
+  mesh.triangles.resize(faces.size());
+  mesh.triangle_surface.resize(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) {
+    mesh.triangles[f] = {fn[3 * f], fn[3 * f + 1], fn[3 * f + 2]};
+    mesh.triangle_surface[f] = fs[f];
+  }
+  mesh.surface_names = surface_names_;
+  return mesh;
+}
+
+void FluidModel::remesh(const TetMesh& mesh, double time) {
+  // The old mesh and state, from the store (what the last step published).
+  const Table& nodes = store_.table(fluid::node_table);
+  const Table& tets = store_.table(fluid::tet_table);
+  const std::vector<double> old_x(nodes.span<const double>("x").begin(), nodes.span<const double>("x").end());
+  const std::vector<int32_t> old_tets(tets.span<const int32_t>("nodes").begin(),
+                                      tets.span<const int32_t>("nodes").end());
+  const bool previous = store_.table(fluid::step_table).span<const double>("has_previous")[0] != 0.0;
+  // Candidate old tets of each new node: zero-size boxes against the old tets' boxes.
+  const std::vector<double> points = flat_nodes(mesh);
+  const size_t nt_old = old_tets.size() / 4;
+  std::vector<int32_t> ids(nt_old);
+  for (size_t t = 0; t < nt_old; ++t) ids[t] = static_cast<int32_t>(t);
+  std::vector<double> lo(3 * nt_old), hi(3 * nt_old);
+  kernels::tet_bounding_boxes(old_x, old_tets, ids, lo, hi, 0, nt_old);
+  // The boxes grow by round-off (1e-9 of the domain's extent): a new node on a face of the domain may
+  // lie a few ulps outside the old tets' boxes.
+  double span = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    double a = old_x[d], b = old_x[d];
+    for (size_t n = 0; n < old_x.size() / 3; ++n)
+      a = std::min(a, old_x[3 * n + d]), b = std::max(b, old_x[3 * n + d]);
+    span = std::max(span, b - a);
+  }
+  kernels::CouplingBroadPhaseWorkspace ws;
+  kernels::coupling_broad_phase({points, points, lo, hi, 1e-9 * span}, ws);
+  const auto u = interpolate(old_x, old_tets, nodes.span<const double>("velocity"), 3, points, ws.pairs);
+  const auto p = interpolate(old_x, old_tets, nodes.span<const double>("pressure"), 1, points, ws.pairs);
+  const auto u_old = previous ? interpolate(old_x, old_tets, nodes.span<const double>("previous_velocity"), 3,
+                                            points, ws.pairs)
+                              : std::vector<double>{};
+
+  build_solver(mesh);
+  store_mesh(mesh);
+  // The fresh solver takes the carried-over state (its Dirichlet nodes get their boundary values); its
+  // pressure preconditioner is assembled at the next step (coefficients 0: not assembled yet).
+  const std::vector<double> no_coefficients(mesh.tets.size(), 0.0);
+  solver_->restore_state(time, u, p, no_coefficients, u_old);
+  Table& out = store_.table(fluid::node_table);
+  const auto su = solver_->velocity(), sp = solver_->pressure(), sprev = solver_->previous_velocity();
+  std::copy(su.begin(), su.end(), out.span<double>("velocity").begin());
+  std::copy(sp.begin(), sp.end(), out.span<double>("pressure").begin());
+  if (previous) std::copy(sprev.begin(), sprev.end(), out.span<double>("previous_velocity").begin());
+  store_.table(fluid::step_table).span<double>("remeshes")[0] += 1.0;
+}
+
+}  // namespace rift

@@ -1,9 +1,25 @@
 // The whole solid step through the engine (surface loads, tet forces, node integration, scheduled by
 // the step graph) on generated meshes, at 1 and 2 threads. Items are tet-steps: what a user's scene
-// costs per tet and step, schedule included. (The per-kernel benchmarks carry the byte models.)
+// costs per tet and step, schedule included.
 // joints = 1: the whole block is a fracture zone (4 private nodes per tet, a 6-node joint on every
 // interior face, limestone joint properties; nothing breaks under this load), so the step adds the joint
 // forces and the node pass gathers about 3 joint corners per node besides its tet corner.
+// observe_all = 1: every step computes the derived fields (stress, strain energy, the joints' opening,
+// slip, damage and stored energy, the nodes' total force), as step_once does by default; 0: only every
+// 16th, as in a run (StepContext::observed: outputs, metrics and energy checks read them).
+//
+// Byte model: the compulsory traffic of the engine's interfaces per step (write-allocate counted), from
+// the per-kernel models (bench_tet_force, bench_joint_force, bench_node_update) with the engine's columns:
+//   per tet    508 B: positions 96, velocities 96, Dm^-1 72, V0 8, material 4, connectivity 16, corner
+//              forces 96 x 2, viscous power 8 x 2 + 8 read for the sum; observed +112 (stress 48 x 2,
+//              energy 8 x 2);
+//   per joint  293 B (3 points): bench_joint_force's 269 (forces only) + initial offset 24; observed +64;
+//   per node   135 B: x and v read and written 96, mass and 1/m 16, free mask 3, held condition 12, slot
+//              range 8; observed +48 (total force written, x 2);
+//   per slot   28 B: its index 4 and the corner-force row it reads 24 (4 per tet, 6 per joint, 3 per loaded
+//              face; a joint's row is read by both of its corners);
+//   per loaded face 228 B (3 positions 72, connectivity 12, corner forces 72 x 2).
+// bytes_per_second and roofline_frac (over the same-process STREAM triad x 4/3) use it.
 #include <benchmark/benchmark.h>
 #include <spdlog/spdlog.h>
 
@@ -73,11 +89,27 @@ std::vector<double> system_seconds(rift::Simulation& sim) {
   return s;
 }
 
+// Bytes per tet-step of the model above, for the mesh of `sim`, observed on 1 step in `every`.
+double model_bytes_per_tet(rift::Simulation& sim, int64_t every) {
+  const rift::Store& store = sim.world().store;
+  auto rows = [&](const char* table) {
+    return store.has(table) ? static_cast<double>(store.table(table).size()) : 0.0;
+  };
+  const double tets = rows("solid_tet"), joints = rows("solid_joint"), nodes = rows("solid_node");
+  const double faces = rows("solid_load_face");
+  const double slots = 4 * tets + 6 * joints + 3 * faces;
+  const double base = 508 * tets + 293 * joints + 135 * nodes + 28 * slots + 228 * faces;
+  const double observed = 112 * tets + 64 * joints + 48 * nodes;
+  return (base + observed / static_cast<double>(every)) / tets;
+}
+
 void BM_SolidStep(benchmark::State& state) {
   const double target = rift::bench::tiny() ? 1e3 : static_cast<double>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const bool joints = state.range(2) != 0;
+  const bool observe_all = state.range(3) != 0;
   rift::Simulation& sim = simulation(target, threads, joints);
+  sim.observe_every_step(observe_all);
   const size_t tets = sim.world().store.table("solid_tet").size();
   const std::vector<double> before = system_seconds(sim);
   for (auto _ : state) sim.step_once();
@@ -99,13 +131,14 @@ void BM_SolidStep(benchmark::State& state) {
   per_item("joint_forces", "solid_joint");
   per_item("node_integration", "solid_node");
   state.counters["threads"] = threads;
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * tets));
+  rift::bench::report_throughput(state, tets,
+                                 model_bytes_per_tet(sim, observe_all ? 1 : rift::kObservedEvery), threads);
 }
 
 }  // namespace
 
 BENCHMARK(BM_SolidStep)
-    ->ArgsProduct({{10000, 100000, 1000000}, {1, 2}, {0, 1}})
-    ->ArgNames({"tets", "threads", "joints"})
+    ->ArgsProduct({{10000, 100000, 1000000}, {1, 2}, {0, 1}, {0, 1}})
+    ->ArgNames({"tets", "threads", "joints", "observe_all"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -175,7 +175,9 @@ void Simulation::restart_from_latest() {
 }
 
 void Simulation::step_once() {
-  const StepContext ctx{step_, time(), dt_};
+  const bool observed =
+      observe_every_step_ || observe_next_ || (step_ + 1) % kObservedEvery == 0 || step_ + 1 == total_steps_;
+  const StepContext ctx{step_, time(), dt_, false, observed};
   // The hooks run in the graph's arena when a model works beside the graph (its task must live there).
   auto hooks = [&](auto&& call) {
     if (has_background_)
@@ -206,8 +208,19 @@ RunResult Simulation::run() {
     record_metrics();
     write_output();
   }
+  // The loop knows which steps it reads after (outputs, metrics, a planned stop): only those compute the
+  // derived fields (StepContext::observed). A checkpoint may hold older derived fields: nothing reads them
+  // before an observed step rewrites them, so a restart continues with the same bits.
+  observe_every_step_ = false;
   try {
     while (step_ < total_steps_) {
+      const int64_t next = step_ + 1;
+      observe_next_ =
+          (options_.write_output &&
+           (next % metric_every == 0 ||
+            (interval > 0 && static_cast<double>(next) * dt_ >=
+                                 static_cast<double>(outputs_written_) * interval * (1 - 1e-12)))) ||
+          (options_.stop_after_step && next >= *options_.stop_after_step);
       step_once();
       const bool last = step_ == total_steps_;
       if (options_.write_output) {
@@ -237,6 +250,7 @@ RunResult Simulation::run() {
       progress.update(step_, time());
     }
   } catch (const Error& e) {
+    observe_every_step_ = true;
     join_background_quietly();
     progress.finish();
     result.steps = step_;
@@ -249,6 +263,7 @@ RunResult Simulation::run() {
     }
     throw;
   }
+  observe_every_step_ = true;
   join_background();  // a run stopped mid-window: the state hashed is the joined one, as a checkpoint's
   progress.finish();
   result.steps = step_;

@@ -41,6 +41,9 @@ class Simulation {
 
   RunResult run();
   void step_once();  // one step without outputs (benchmarks, tests)
+  // Whether step_once computes the derived fields on every step (true, the default: a caller may read
+  // them after any step) or only on the steps a run reads them after (StepContext::observed).
+  void observe_every_step(bool every) { observe_every_step_ = every; }
 
   const Scene& scene() const { return scene_; }
   World& world() { return *world_; }
@@ -74,6 +77,8 @@ class Simulation {
   int64_t step_ = 0;
   int64_t total_steps_ = 0;
   int64_t outputs_written_ = 0;
+  bool observe_every_step_ = true;
+  bool observe_next_ = false;  // run(): outputs or metrics follow the next step
   std::unique_ptr<class XdmfSeries> series_;
   std::unique_ptr<class CheckpointSet> checkpoints_;
   std::vector<std::string> metric_names_;

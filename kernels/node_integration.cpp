@@ -24,8 +24,9 @@ constexpr size_t kPrefetchAhead = 8;
   }
 }
 
-// Damped is a template argument so the undamped pass keeps its instructions (and bits) exactly.
-template <bool Damped>
+// Damped is a template argument so the undamped pass keeps its instructions (and bits) exactly; WriteForce
+// so the pass without a force output has no branch for it.
+template <bool Damped, bool WriteForce>
 NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
   NodeStepResult r;
   const double half_cdt = 0.5 * a.mass_damping * a.dt;
@@ -72,7 +73,7 @@ NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size
       const size_t i = 3 * n + c;
       const double internal = f[0][c] + f[1][c] + fc[c];
       const double total = internal + f[2][c];
-      a.f[i] = total;
+      if constexpr (WriteForce) a.f[i] = total;
       const double v_old = a.v[i];
       const int32_t bc = a.held_velocity[i];
       const double held = bc >= 0 ? a.prescribed[3 * bc + c] : 0.0;
@@ -106,7 +107,11 @@ NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size
 }  // namespace
 
 NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end) {
-  return a.mass_damping > 0.0 ? integrate<true>(a, s, begin, end) : integrate<false>(a, s, begin, end);
+  if (a.f.empty())
+    return a.mass_damping > 0.0 ? integrate<true, false>(a, s, begin, end)
+                                : integrate<false, false>(a, s, begin, end);
+  return a.mass_damping > 0.0 ? integrate<true, true>(a, s, begin, end)
+                              : integrate<false, true>(a, s, begin, end);
 }
 
 }  // namespace rift::kernels

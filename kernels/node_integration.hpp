@@ -30,7 +30,8 @@ struct ForceSlots {
 struct NodeIntegrationArgs {
   double dt;
   double gravity[3];
-  std::span<double> x, v, f;               // 3 per node; f is overwritten with the gathered total force
+  std::span<double> x, v;                  // 3 per node
+  std::span<double> f;                     // 3 per node, or empty: overwritten with the gathered total force
   std::span<const double> mass, inv_mass;  // 1 per node (inv_mass 0 for a massless node: it then only
                                            // follows BCs)
   std::span<const uint8_t> free_mask;      // 3 per node: 1 integrate, 0 held at the prescribed velocity

@@ -50,10 +50,12 @@ void JointForceSystem::run(const StepContext& ctx) {
   args.d_max = joints.span<double>("d_max");
   args.broken = joints.span<uint8_t>("broken");
   args.corner_force = joints.span<double>("corner_force");
-  args.opening = joints.span<double>("opening");
-  args.slip = joints.span<double>("slip");
-  args.damage = joints.span<double>("damage");
-  args.stored_energy = joints.span<double>("stored_energy");
+  if (ctx.observed) {  // only outputs, metrics and the energy checks read these (StepContext::observed)
+    args.opening = joints.span<double>("opening");
+    args.slip = joints.span<double>("slip");
+    args.damage = joints.span<double>("damage");
+    args.stored_energy = joints.span<double>("stored_energy");
+  }
   args.initial_offset = joints.span<double>("initial_offset");
   if (joints.has("residual_anchor")) args.residual_anchor = joints.span<double>("residual_anchor");
   args.breaks = breaks_;

@@ -64,7 +64,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       {gravity_[0], gravity_[1], gravity_[2]},
       nodes.span<double>("x"),
       nodes.span<double>("v"),
-      nodes.span<double>("f"),
+      ctx.observed ? nodes.span<double>("f") : std::span<double>{},  // read by outputs and reactions only
       nodes.span<double>("mass"),
       nodes.span<double>("inv_mass"),
       nodes.span<uint8_t>("free"),

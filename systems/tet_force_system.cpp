@@ -28,16 +28,12 @@ Access TetForceSystem::access() const {
 void TetForceSystem::run(const StepContext& ctx) {
   Table& nodes = store_.table(solid::node_table);
   Table& tets = store_.table(solid::tet_table);
-  kernels::TetForceArgs args{nodes.span<double>("x"),
-                             nodes.span<double>("v"),
-                             tets.span<int32_t>("nodes"),
-                             tets.span<double>("dm_inv"),
-                             tets.span<double>("volume0"),
-                             tets.span<int32_t>("material"),
-                             materials_,
-                             tets.span<double>("corner_force"),
-                             tets.span<double>("stress"),
-                             tets.span<double>("energy")};
+  kernels::TetForceArgs args{nodes.span<double>("x"), nodes.span<double>("v"), tets.span<int32_t>("nodes"),
+                             tets.span<double>("dm_inv"), tets.span<double>("volume0"),
+                             tets.span<int32_t>("material"), materials_, tets.span<double>("corner_force"),
+                             // Only outputs and the energy checks read these (StepContext::observed).
+                             ctx.observed ? tets.span<double>("stress") : std::span<double>{},
+                             ctx.observed ? tets.span<double>("energy") : std::span<double>{}};
   const auto power = tets.span<double>("viscous_power");
   args.viscous_power = power;
   args.initial_stress = initial_stress_;

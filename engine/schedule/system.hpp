@@ -31,7 +31,16 @@ struct StepContext {
   double time = 0;    // simulated time at the start of the step [s]
   double dt = 0;      // step size [s]
   bool last = false;  // after the run's final step (health checks that sample every few steps run here too)
+  // Whether anything reads this step's derived fields after it (outputs, metrics, the energy checks every
+  // kObservedEvery steps, the run's last step). Systems skip what only those read (stress, strain
+  // energy, the joints' opening, slip, damage and stored energy, the nodes' total force) on other steps;
+  // the state a step depends on is always updated, so results do not depend on it.
+  bool observed = true;
 };
+
+// Health checks that read the derived fields (energies) run after every step whose index + 1 is a multiple
+// of this, and after the last; such steps are observed.
+inline constexpr int64_t kObservedEvery = 16;
 
 class System {
  public:

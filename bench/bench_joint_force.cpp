@@ -131,7 +131,8 @@ const JointMesh& cached_joint_mesh(size_t target_joints) {
 
 using Kernel = rift::kernels::JointStatus (*)(const JointArgs&, size_t, size_t);
 
-void run(benchmark::State& state, Kernel kernel, bool all_outputs, bool offsets = false) {
+void run(benchmark::State& state, Kernel kernel, bool all_outputs, bool offsets = false,
+         bool anchors = false) {
   const size_t target = static_cast<size_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const int points = static_cast<int>(state.range(2));
@@ -148,28 +149,36 @@ void run(benchmark::State& state, Kernel kernel, bool all_outputs, bool offsets 
   }
   std::vector<rift::kernels::JointBreak> breaks(64);
   std::atomic<size_t> break_count{0};
-  const JointArgs args{m.x,
-                       m.joint_nodes,
-                       m.material,
-                       m.materials,
-                       &rift::kernels::joint_rule(points),
-                       rift::kernels::Softening::energy_exact,
-                       d_max,
-                       broken,
-                       force,
-                       opening,
-                       slip,
-                       damage,
-                       energy,
-                       breaks,
-                       &break_count,
-                       offsets ? std::span<const double>(m.offset) : std::span<const double>()};
+  JointArgs args{m.x,
+                 m.joint_nodes,
+                 m.material,
+                 m.materials,
+                 &rift::kernels::joint_rule(points),
+                 rift::kernels::Softening::energy_exact,
+                 d_max,
+                 broken,
+                 force,
+                 opening,
+                 slip,
+                 damage,
+                 energy,
+                 breaks,
+                 &break_count,
+                 offsets ? std::span<const double>(m.offset) : std::span<const double>()};
+  // Residual friction's slider anchors (3 per point, from 0): the weaker material has mu_res 0.3, so its
+  // damaged joints (about 5 % of all) take the scalar path, and every AVX2 group of 4 holding one too.
+  std::vector<double> anchor;
+  if (anchors) {
+    anchor.assign(3 * static_cast<size_t>(points) * J, 0.0);
+    args.residual_anchor = anchor;
+  }
   for (auto _ : state) {
     rift::bench::parallel_ranges(threads, J, kGrain,
                                  [&](size_t begin, size_t end) { kernel(args, begin, end); });
     benchmark::ClobberMemory();
   }
   const double model = points == 3 ? 324.0 : 452.0;
+  // The anchors' own traffic is left out of the io model (at most 48 B per point of the joints that use it).
   const double io =
       (all_outputs ? (points == 3 ? 333.0 : 397.0) : (points == 3 ? 269.0 : 333.0)) + (offsets ? 24.0 : 0.0);
   rift::bench::report_throughput(state, J, model, threads);
@@ -207,9 +216,16 @@ void BM_JointForcesWithOffset(benchmark::State& state) {
   run(state, &rift::kernels::joint_forces, true, true);
 }
 
+// All outputs with residual friction's anchors (the slider of joint_law.hpp on the damaged joints of the
+// weaker material): the cost of its scalar fallback against BM_JointForces.
+void BM_JointForcesResidualFriction(benchmark::State& state) {
+  run(state, &rift::kernels::joint_forces, true, false, true);
+}
+
 BENCHMARK(BM_JointForces)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JointForcesScalar)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JointForcesOnly)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_JointForcesWithOffset)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JointForcesResidualFriction)->Apply(joint_args)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -176,6 +176,24 @@ TEST(FluidAdapt, ARestartContinuesBitForBitOnTheCheckpointsMesh) {
   }
 }
 
+// The concurrent coupling remeshes at the window's end too, after the join (docs/coupling.md): the same
+// bits on 1 and 2 threads, and a restart from inside a window (the fluid step already joined there)
+// continues bit for bit.
+TEST(FluidAdapt, TheConcurrentCouplingRemeshesBitForBit) {
+  test::TempDir dir;
+  std::vector<std::string> overrides = moving();
+  overrides.push_back("fluid_solid.coupling=concurrent");
+  const Scene scene = adaptive_scene(overrides);
+  const RunResult one = test::run_scene(scene, dir.path() / "t1", 1);
+  const RunResult two = test::run_scene(scene, dir.path() / "t2", 2);
+  ASSERT_TRUE(one.completed);
+  EXPECT_EQ(one.state_hash, two.state_hash);
+  const auto [first, rest] =
+      test::stop_and_resume(scene, dir.path() / "split", 2, one.steps / 4 + one.steps / 8);
+  ASSERT_TRUE(rest.completed);
+  EXPECT_EQ(rest.state_hash, one.state_hash);
+}
+
 TEST(FluidAdapt, BadInputNamesTheKey) {
   auto message = [](std::vector<std::string> overrides) {
     try {

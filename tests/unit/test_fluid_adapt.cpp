@@ -209,6 +209,8 @@ TEST(FluidAdapt, BadInputNamesTheKey) {
   const std::string surfaces = message({"fluid.adapt.surfaces=[cracks]"});
   EXPECT_NE(surfaces.find("fluid.adapt.surfaces"), std::string::npos) << surfaces;
   EXPECT_NE(surfaces.find("boundary, notch and fracture"), std::string::npos) << surfaces;
+  const std::string none = message({"fluid.adapt.surfaces=[]"});
+  EXPECT_NE(none.find("fluid.adapt.surfaces: expected a list of at least one"), std::string::npos) << none;
   const std::string interval = message({"fluid.adapt.interval=-1"});
   EXPECT_NE(interval.find("fluid.adapt.interval"), std::string::npos) << interval;
 }

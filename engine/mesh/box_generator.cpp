@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/box_faces.hpp"
 #include "engine/mesh/notched_box.hpp"
 #include "engine/mesh/polyhedral_mesher.hpp"
 
@@ -16,18 +17,10 @@ namespace {
 // every vertex (checked in make_notched_box) and coplanar triangles turn by round-off only.
 constexpr double kFeatureAngleDeg = 1.0;
 
-// Which named surface a boundary triangle lies on: a box face when all three nodes are in its plane
-// (box-plane coordinates come out of Mesh_3 exactly, the tolerance only guards round-off), otherwise
-// the notch whose faces pass nearest to the triangle's centroid.
+// Which named surface a boundary triangle lies on: a box face (box_faces.hpp), otherwise the notch whose
+// faces pass nearest to the triangle's centroid.
 int32_t classify(const NotchedBox& box, const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
-  const double tol = 1e-9 * std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
-  for (int a = 0; a < 3; ++a)
-    for (int side = 0; side < 2; ++side) {
-      const double plane = side ? box.hi[a] : box.lo[a];
-      bool in_plane = true;
-      for (const int32_t v : tri) in_plane = in_plane && std::abs(mesh.nodes[v][a] - plane) <= tol;
-      if (in_plane) return 2 * a + side;
-    }
+  if (const int32_t face = box_face_of(box.lo, box.hi, mesh, tri); face >= 0) return face;
   Vec3 c{0, 0, 0};
   for (const int32_t v : tri)
     for (int k = 0; k < 3; ++k) c[k] += mesh.nodes[v][k] / 3;

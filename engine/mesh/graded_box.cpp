@@ -4,24 +4,17 @@
 #include <cmath>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/box_faces.hpp"
 #include "engine/mesh/surface_distance.hpp"
 
 namespace rift {
 namespace {
 
-// A boundary triangle lies on the box face whose plane holds its three nodes (box-plane coordinates come
-// out of Mesh_3 exactly; the tolerance only guards round-off).
+// A boundary triangle lies on a face of the box (box_faces.hpp).
 int32_t classify(const GradedBoxSpec& spec, const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
-  const double tol =
-      1e-9 * std::max({spec.hi[0] - spec.lo[0], spec.hi[1] - spec.lo[1], spec.hi[2] - spec.lo[2]});
-  for (int a = 0; a < 3; ++a)
-    for (int side = 0; side < 2; ++side) {
-      const double plane = side ? spec.hi[a] : spec.lo[a];
-      bool in_plane = true;
-      for (const int32_t v : tri) in_plane = in_plane && std::abs(mesh.nodes[v][a] - plane) <= tol;
-      if (in_plane) return 2 * a + side;
-    }
-  throw Error("graded box: internal error, a boundary triangle lies on no face of the box");
+  const int32_t face = box_face_of(spec.lo, spec.hi, mesh, tri);
+  if (face < 0) throw Error("graded box: internal error, a boundary triangle lies on no face of the box");
+  return face;
 }
 
 }  // namespace

@@ -119,9 +119,8 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   // lie a few ulps outside the old tets' boxes.
   double span = 0.0;
   for (int d = 0; d < 3; ++d) {
-    double a = old_x[d], b = old_x[d];
-    for (size_t n = 0; n < old_x.size() / 3; ++n)
-      a = std::min(a, old_x[3 * n + d]), b = std::max(b, old_x[3 * n + d]);
+    double a = lo[d], b = hi[d];
+    for (size_t t = 0; t < nt_old; ++t) a = std::min(a, lo[3 * t + d]), b = std::max(b, hi[3 * t + d]);
     span = std::max(span, b - a);
   }
   kernels::CouplingBroadPhaseWorkspace ws;
@@ -134,8 +133,8 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
 
   build_solver(mesh);
   store_mesh(mesh);
-  // The fresh solver takes the carried-over state (its Dirichlet nodes get their boundary values); its
-  // pressure preconditioner is assembled at the next step (coefficients 0: not assembled yet).
+  // The fresh solver takes the carried-over state (the next step imposes the boundary values on Dirichlet
+  // nodes); its pressure preconditioner is assembled at that step (coefficients 0: not assembled yet).
   const std::vector<double> no_coefficients(mesh.tets.size(), 0.0);
   solver_->restore_state(time, u, p, no_coefficients, u_old);
   Table& out = store_.table(fluid::node_table);

@@ -95,7 +95,10 @@ struct JointStatus {
 };
 
 // Joints [begin, end). Outputs are overwritten, not accumulated; ranges may be split arbitrarily between
-// threads (every joint's result is independent of the split). No allocation.
+// threads. A joint's bits depend on the split only where its group of 4 (from begin) holds a broken or
+// degenerate joint, or a damaged point with residual friction, and so goes through the scalar path, a few
+// ulps apart: callers that split at fixed multiples of 4 (rift::parallel_for's blocks) get the same bits on
+// any thread count. No allocation.
 // Two implementations of the same law: joint_forces_scalar (one joint at a time through joint_law.hpp, the
 // reference) and joint_forces (4 joints per AVX2 register; groups with a broken or degenerate joint go
 // through the scalar code). Tests compare them on random joints in every state of the law.

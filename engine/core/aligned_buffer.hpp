@@ -1,10 +1,10 @@
 #pragma once
 // A growable, 64-byte aligned block of bytes: the storage behind every column. Cache-line alignment
 // lets kernels use aligned vector loads and keeps two threads' writes to different columns apart.
+// Blocks of 1 MiB or more get whole 2 MiB pages and ask for transparent huge pages (aligned_buffer.cpp).
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
-#include <new>
 #include <utility>
 
 namespace rift {
@@ -41,16 +41,7 @@ class AlignedBuffer {
     if (bytes > size_) std::memset(data_ + size_, 0, bytes - size_);
     size_ = bytes;
   }
-  void reserve(size_t bytes) {
-    if (bytes <= capacity_) return;
-    size_t rounded = (bytes + alignment - 1) / alignment * alignment;
-    auto* fresh = static_cast<std::byte*>(std::aligned_alloc(alignment, rounded));
-    if (!fresh) throw std::bad_alloc();
-    if (size_) std::memcpy(fresh, data_, size_);
-    std::free(data_);
-    data_ = fresh;
-    capacity_ = rounded;
-  }
+  void reserve(size_t bytes);
 
   std::byte* data() { return data_; }
   const std::byte* data() const { return data_; }

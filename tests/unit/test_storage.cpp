@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 
+#include "engine/core/aligned_buffer.hpp"
 #include "engine/core/handle_map.hpp"
 #include "engine/core/state_hash.hpp"
 #include "engine/core/table.hpp"
@@ -39,6 +41,25 @@ TEST(Table, GrowingKeepsValues) {
   auto w = t.span<double>("v");
   for (size_t i = 0; i < 6; ++i) EXPECT_EQ(w[i], double(i));
   EXPECT_EQ(w[6], 0.0);
+}
+
+// Blocks of 1 MiB or more take whole 2 MiB pages (aligned_buffer.cpp asks for huge pages on them): they
+// are 2 MiB aligned, and growing past that size keeps the contents and zero-fills the rest, as below it.
+TEST(AlignedBuffer, LargeBlocksAreHugePageAlignedAndKeepTheirContents) {
+  constexpr size_t MiB = size_t{1} << 20;
+  AlignedBuffer b;
+  b.resize(1000);
+  std::memset(b.data(), 7, 1000);
+  b.resize(3 * MiB);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(b.data()) % (2 * MiB), 0u);
+  EXPECT_EQ(b.capacity() % (2 * MiB), 0u);
+  EXPECT_EQ(static_cast<int>(b.data()[999]), 7);
+  EXPECT_EQ(static_cast<int>(b.data()[1000]), 0);
+  EXPECT_EQ(static_cast<int>(b.data()[3 * MiB - 1]), 0);
+  AlignedBuffer small;
+  small.resize(MiB / 2);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(small.data()) % 64, 0u);
+  EXPECT_LT(small.capacity(), MiB);  // small blocks are not rounded to a huge page
 }
 
 TEST(HandleMap, SwapRemoveKeepsHandlesAndDetectsStaleOnes) {

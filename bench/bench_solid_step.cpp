@@ -4,6 +4,8 @@
 // joints = 1: the whole block is a fracture zone (4 private nodes per tet, a 6-node joint on every
 // interior face, limestone joint properties; nothing breaks under this load), so the step adds the joint
 // forces and the node pass gathers about 3 joint corners per node besides its tet corner.
+// fused = 1 (the default, solid.fused_tet_pass): the node pass computes the tets with nodes of their own
+// and gathers their joints per tet; 0: a separate tet pass and the per-node gather (jointed 1e5 only).
 // observe_all = 1: every step computes the derived fields (stress, strain energy, the joints' opening,
 // slip, damage and stored energy, the nodes' total force), as step_once does by default; 0: only every
 // 16th, as in a run (StepContext::observed: outputs, metrics and energy checks read them).
@@ -19,6 +21,9 @@
 //   per slot   28 B: its index 4 and the corner-force row it reads 24 (4 per tet, 6 per joint, 3 per loaded
 //              face; a joint's row is read by both of its corners);
 //   per loaded face 228 B (3 positions 72, connectivity 12, corner forces 72 x 2).
+// Fused (every tet of the jointed block): per tet 145 B (the 508 less the corner forces and the positions
+// and velocities, which the node pass reads from cache right after the tet kernel; plus the face table,
+// 21 B); per node 127 B (no slot range); per joint slot 24 B (the row, no index); no tet slots.
 // bytes_per_second and roofline_frac (over the same-process STREAM triad x 4/3) use it.
 #include <benchmark/benchmark.h>
 #include <spdlog/spdlog.h>
@@ -35,7 +40,7 @@
 namespace {
 
 // A clamped limestone block under an end traction, sized so the mesh has about `tets` tetrahedra.
-std::string block_scene(double tets, bool joints) {
+std::string block_scene(double tets, bool joints, bool fused) {
   const double volume = 0.1 * 0.05 * 0.05;
   // The generator gives about 4.4 tets per h^3 of volume at uniform size h (measured: 363,773 tets at
   // h = 1.44 mm in this block).
@@ -49,7 +54,9 @@ std::string block_scene(double tets, bool joints) {
          "mesh:\n  generate: {box: [0.1, 0.05, 0.05], size_min: " +
          std::to_string(h) + ", size_max: " + std::to_string(h) +
          "}\n"
-         "solid:\n  materials: [{name: rock, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05" +
+         "solid:\n  fused_tet_pass: " +
+         std::string(fused ? "true" : "false") +
+         "\n  materials: [{name: rock, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05" +
          fracture +
          "}]\n"
          "  boundaries:\n    - {surface: xmin, type: fixed}\n"
@@ -61,14 +68,16 @@ struct Cached {
   double target = 0;
   int threads = 0;
   bool joints = false;
+  bool fused = true;
   std::unique_ptr<rift::Simulation> sim;
 };
 
-rift::Simulation& simulation(double tets, int threads, bool joints) {
+rift::Simulation& simulation(double tets, int threads, bool joints, bool fused) {
   static Cached cache;
-  if (!cache.sim || cache.target != tets || cache.threads != threads || cache.joints != joints) {
+  if (!cache.sim || cache.target != tets || cache.threads != threads || cache.joints != joints ||
+      cache.fused != fused) {
     cache.sim.reset();
-    auto result = rift::read_scene_text(block_scene(tets, joints), "bench_solid_step", ".");
+    auto result = rift::read_scene_text(block_scene(tets, joints, fused), "bench_solid_step", ".");
     if (!result.scene) throw std::runtime_error("bench scene invalid: " + result.errors.front().format());
     rift::RunOptions o;
     o.write_output = false;
@@ -79,6 +88,7 @@ rift::Simulation& simulation(double tets, int threads, bool joints) {
     cache.target = tets;
     cache.threads = threads;
     cache.joints = joints;
+    cache.fused = fused;
   }
   return *cache.sim;
 }
@@ -90,7 +100,7 @@ std::vector<double> system_seconds(rift::Simulation& sim) {
 }
 
 // Bytes per tet-step of the model above, for the mesh of `sim`, observed on 1 step in `every`.
-double model_bytes_per_tet(rift::Simulation& sim, int64_t every) {
+double model_bytes_per_tet(rift::Simulation& sim, int64_t every, bool fused) {
   const rift::Store& store = sim.world().store;
   auto rows = [&](const char* table) {
     return store.has(table) ? static_cast<double>(store.table(table).size()) : 0.0;
@@ -98,7 +108,10 @@ double model_bytes_per_tet(rift::Simulation& sim, int64_t every) {
   const double tets = rows("solid_tet"), joints = rows("solid_joint"), nodes = rows("solid_node");
   const double faces = rows("solid_load_face");
   const double slots = 4 * tets + 6 * joints + 3 * faces;
-  const double base = 508 * tets + 293 * joints + 135 * nodes + 28 * slots + 228 * faces;
+  const double base =
+      fused && joints > 0
+          ? 145 * tets + 293 * joints + 127 * nodes + 24 * 6 * joints + 28 * 3 * faces + 228 * faces
+          : 508 * tets + 293 * joints + 135 * nodes + 28 * slots + 228 * faces;
   const double observed = 112 * tets + 64 * joints + 48 * nodes;
   return (base + observed / static_cast<double>(every)) / tets;
 }
@@ -108,7 +121,8 @@ void BM_SolidStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(1));
   const bool joints = state.range(2) != 0;
   const bool observe_all = state.range(3) != 0;
-  rift::Simulation& sim = simulation(target, threads, joints);
+  const bool fused = state.range(4) != 0;
+  rift::Simulation& sim = simulation(target, threads, joints, fused);
   sim.observe_every_step(observe_all);
   const size_t tets = sim.world().store.table("solid_tet").size();
   const std::vector<double> before = system_seconds(sim);
@@ -117,7 +131,8 @@ void BM_SolidStep(benchmark::State& state) {
   state.counters["tets"] = static_cast<double>(tets);
   if (joints) state.counters["joints"] = static_cast<double>(sim.world().store.table("solid_joint").size());
   // Wall time inside each system per item (ns). At 1 thread the systems run one after another, so these
-  // split the step; at 2 threads tet and joint forces may overlap in the graph.
+  // split the step; at 2 threads tet and joint forces may overlap in the graph. Fused, the tets' time is
+  // in the node pass's.
   const double steps = static_cast<double>(state.iterations());
   auto per_item = [&](const char* system, const char* table) {
     const size_t items = sim.world().store.has(table) ? sim.world().store.table(table).size() : 0;
@@ -131,14 +146,15 @@ void BM_SolidStep(benchmark::State& state) {
   per_item("joint_forces", "solid_joint");
   per_item("node_integration", "solid_node");
   state.counters["threads"] = threads;
-  rift::bench::report_throughput(state, tets,
-                                 model_bytes_per_tet(sim, observe_all ? 1 : rift::kObservedEvery), threads);
+  rift::bench::report_throughput(
+      state, tets, model_bytes_per_tet(sim, observe_all ? 1 : rift::kObservedEvery, fused), threads);
 }
 
 }  // namespace
 
 BENCHMARK(BM_SolidStep)
-    ->ArgsProduct({{10000, 100000, 1000000}, {1, 2}, {0, 1}, {0, 1}})
-    ->ArgNames({"tets", "threads", "joints", "observe_all"})
+    ->ArgsProduct({{10000, 100000, 1000000}, {1, 2}, {0, 1}, {0, 1}, {1}})
+    ->ArgsProduct({{100000}, {1, 2}, {1}, {0}, {0}})
+    ->ArgNames({"tets", "threads", "joints", "observe_all", "fused"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -66,6 +66,32 @@ struct NodeStepResult {
   }
 };
 
-NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end);
+// Nodes [begin, end). The sums continue from `so_far` node by node, so a range cut into consecutive calls,
+// each passed the previous result, books the same bits as one call over the whole range.
+NodeStepResult integrate_nodes(const NodeIntegrationArgs& a, const ForceSlots& s, size_t begin, size_t end,
+                               const NodeStepResult& so_far = {});
+
+// The nodes of tets that own them (a fracture zone's: corner k of tet e is node first_node + 4 (e -
+// tet_first) + k, and no other tet acts on it), gathered per tet instead of per node: the tet's own corner
+// forces, then each of its faces' joint row once (9 values) handed to the three corners on that face, then
+// loaded faces through the nodes' slot lists where `loaded` says there are some. A node's sum then runs
+// tet, joints in face order, loads, where the slot-list pass runs tet, joints in slot order, loads: the
+// same terms, added in another order when a node sits in two or three joints.
+struct PrivateTetForces {
+  std::span<const double> tet_force;  // 12 per tet, tet `tet_first` first (the tet pass's scratch)
+  size_t tet_first = 0;
+  size_t first_node = 0;                  // node of corner 0 of tet `tet_first`
+  std::span<const double> joint_rows;     // 9 per joint: forces on its side-B corners (ForceSlots source 1)
+  std::span<const int32_t> face_joint;    // 4 per tet (all tets): 2 j + 1 if the tet is the joint's side A
+                                          // (it takes the rows negated), 2 j if side B; -1: no joint
+  std::span<const uint8_t> face_corners;  // 4 per tet: the tet corner of the joint's corner i, bits 2i, 2i+1
+  std::span<const uint8_t> loaded;        // 1 per tet: some node of it has loaded-face slots
+};
+
+// Tets [begin, end) of p, their nodes integrated as integrate_nodes does (same update, same work booking).
+// s gives the slot lists, read only for loaded tets. Continues from so_far as integrate_nodes does.
+NodeStepResult integrate_private_tets(const NodeIntegrationArgs& a, const PrivateTetForces& p,
+                                      const ForceSlots& s, size_t begin, size_t end,
+                                      const NodeStepResult& so_far = {});
 
 }  // namespace rift::kernels

@@ -58,6 +58,10 @@ struct TetForceArgs {
   std::span<double> viscous_power = {};         // out, 1 per tet: eta (D:D) V [W]; empty = skipped
   std::span<const double> initial_stress = {};  // 6 per material: sigma0, Cauchy xx yy zz xy yz zx [Pa];
                                                 // empty = none
+  // The tet whose corner forces sit at corner_force[0]: tet t writes corner_force[12 (t - first) ...], so a
+  // caller can have a range of tets write into a small scratch block (the fused node pass keeps them in L1).
+  // The other outputs are indexed by t as it is.
+  size_t corner_force_first = 0;
 };
 
 // Tets whose current J = det F is not > 0 (inverted, flat or NaN). Their outputs are written as 0.

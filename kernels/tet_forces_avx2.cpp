@@ -81,7 +81,8 @@ template <bool kPrestress>
   V4 f[12];
   for (int n = 0; n < 12; ++n) f[n] = simd::keep(ok, r.force[n / 3][n % 3]);
   for (int b = 0; b < 3; ++b)
-    simd::store_block4(f + 4 * b, a.corner_force.data() + 12 * t + 4 * b, 12, g.count);
+    simd::store_block4(f + 4 * b, a.corner_force.data() + 12 * (t - a.corner_force_first) + 4 * b, 12,
+                       g.count);
   if (!a.stress.empty()) {
     for (int n = 0; n < 6; ++n) r.stress[n] = simd::keep(ok, r.stress[n]);
     simd::store_block4(r.stress, a.stress.data() + 6 * t, 6, g.count);

@@ -7,7 +7,7 @@ namespace rift::kernels {
 namespace {
 
 void write_zeros(const TetForceArgs& args, size_t t) {
-  for (int n = 0; n < 12; ++n) args.corner_force[12 * t + n] = 0.0;
+  for (int n = 0; n < 12; ++n) args.corner_force[12 * (t - args.corner_force_first) + n] = 0.0;
   if (!args.stress.empty())
     for (int n = 0; n < 6; ++n) args.stress[6 * t + n] = 0.0;
   if (!args.strain_energy.empty()) args.strain_energy[t] = 0.0;
@@ -17,7 +17,8 @@ void write_zeros(const TetForceArgs& args, size_t t) {
 [[gnu::always_inline]] inline void write_response(const TetForceArgs& args, size_t t,
                                                   const tet_law::Response<double>& r) {
   for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < 3; ++i) args.corner_force[12 * t + 3 * a + i] = r.force[a][i];
+    for (int i = 0; i < 3; ++i)
+      args.corner_force[12 * (t - args.corner_force_first) + 3 * a + i] = r.force[a][i];
   if (!args.stress.empty())
     for (int n = 0; n < 6; ++n) args.stress[6 * t + n] = r.stress[n];
   if (!args.strain_energy.empty()) args.strain_energy[t] = r.energy;

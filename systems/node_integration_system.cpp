@@ -1,5 +1,9 @@
 #include "systems/node_integration_system.hpp"
 
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+
 #include "engine/schedule/parallel.hpp"
 #include "kernels/node_integration.hpp"
 #include "systems/solid_tables.hpp"
@@ -47,6 +51,11 @@ Access NodeIntegrationSystem::access() const {
   if (!external_column_.empty()) reads.push_back(col(N, external_column_.c_str()));
   if (crack_) reads.push_back(col(N, "crack_force"));
   if (damped_) writes.push_back(col(E, "damping"));
+  if (fused_) {
+    const Access tets = fused_->fused_access();
+    reads.insert(reads.end(), tets.reads.begin(), tets.reads.end());
+    writes.insert(writes.end(), tets.writes.begin(), tets.writes.end());
+  }
   return {reads, writes};
 }
 
@@ -86,9 +95,12 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
        tet_slots + joint_slots + 3 * static_cast<int64_t>(faces.size())},  // crack faces have no slots
       nodes.span<int32_t>("slots"),
       store_.table(solid::slot_table).span<int32_t>("slot")};
-  parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {
-    blocks_[begin / grain] = kernels::integrate_nodes(args, slots, begin, end);
-  });
+  if (fused_)
+    run_fused(args, slots, ctx);
+  else
+    parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {
+      blocks_[begin / grain] = kernels::integrate_nodes(args, slots, begin, end);
+    });
   kernels::NodeStepResult total;
   for (const auto& b : blocks_) total += b;  // fixed block order: deterministic
   non_finite_ = total.non_finite;
@@ -98,6 +110,164 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   energy.span<double>("external_work")[0] += total.work[2];
   if (contact_) energy.span<double>("contact_work")[0] += total.work[3];
   if (damped_) energy.span<double>("damping")[0] += total.damping;
+}
+
+void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
+                                      const kernels::ForceSlots& slots, const StepContext& ctx) {
+  const kernels::TetForceArgs tet_args = fused_->step_args(ctx);
+  constexpr size_t per_thread = 12 * kFusedTets;  // 12 KB: a multiple of the cache line, no false sharing
+  const size_t threads = static_cast<size_t>(tbb::this_task_arena::max_concurrency());
+  if (scratch_.size() < threads * per_thread) scratch_.resize(threads * per_thread);  // first step only
+  parallel_for(block_first_piece_.size() - 1, 1, [&](size_t b, size_t) {
+    const size_t thread = static_cast<size_t>(tbb::this_task_arena::current_thread_index());
+    const std::span<double> scratch(scratch_.data() + thread * per_thread, per_thread);
+    kernels::NodeStepResult result;
+    TetForceSystem::Tally tally;
+    for (size_t p = block_first_piece_[b]; p < block_first_piece_[b + 1]; ++p) {
+      const Piece& piece = pieces_[p];
+      if (piece.tet_end == piece.tet_begin) {
+        result = kernels::integrate_nodes(args, slots, piece.node_begin, piece.node_end, result);
+        continue;
+      }
+      // The run's corner forces go to scratch, and its nodes gather per tet (kernels/node_integration.hpp).
+      TetForceSystem::fused_forces(tet_args, piece.tet_begin, piece.tet_end, scratch, tally);
+      const kernels::PrivateTetForces tets{scratch,     piece.tet_begin, piece.node_begin, slots.source[1],
+                                           face_joint_, face_corners_,   loaded_};
+      result = kernels::integrate_private_tets(args, tets, slots, piece.tet_begin, piece.tet_end, result);
+    }
+    blocks_[b] = result;
+    fused_tallies_[b] = tally;
+  });
+  TetForceSystem::Tally total;
+  for (const auto& t : fused_tallies_) total += t;  // fixed block order: deterministic
+  fused_->book_fused(ctx, total);
+}
+
+size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto range = nodes.span<const int32_t>("slots");
+  const auto slot = store_.table(solid::slot_table).span<const int32_t>("slot");
+  const size_t tet_count = conn.size() / 4;
+  const int64_t tet_slots = 4 * static_cast<int64_t>(tet_count);
+  // A tet qualifies when its corners are 4 nodes in a row, each of which has its own corner as its only
+  // tet slot: then the run's scratch holds every tet force those nodes gather.
+  auto own_nodes = [&](size_t e) {
+    for (int k = 0; k < 4; ++k) {
+      const int32_t n = conn[4 * e] + k;
+      if (conn[4 * e + static_cast<size_t>(k)] != n) return false;
+      int tet_slots_of_node = 0;
+      for (int32_t i = range[2 * static_cast<size_t>(n)]; i < range[2 * static_cast<size_t>(n) + 1]; ++i)
+        if (slot[static_cast<size_t>(i)] < tet_slots) {
+          ++tet_slots_of_node;
+          if (slot[static_cast<size_t>(i)] != static_cast<int32_t>(4 * e) + k) return false;
+        }
+      if (tet_slots_of_node != 1) return false;
+    }
+    return true;
+  };
+  std::vector<Piece> runs;
+  for (size_t e = 0; e < tet_count; ++e) {
+    if (!own_nodes(e)) continue;
+    const size_t first = static_cast<size_t>(conn[4 * e]);
+    Piece* last = runs.empty() ? nullptr : &runs.back();
+    if (last && last->tet_end == e && last->node_end == first && e - last->tet_begin < kFusedTets) {
+      last->tet_end = e + 1;
+      last->node_end = first + 4;
+    } else if (!last || first >= last->node_end) {  // pieces go in node order
+      runs.push_back({first, first + 4, e, e + 1});
+    }
+  }
+  if (runs.empty() || !build_face_table(runs)) return 0;
+
+  // Pieces in node order, plain ones cut at the multiples of grain; blocks of about grain nodes.
+  pieces_.clear();
+  size_t next = 0;
+  auto add_plain = [&](size_t end) {
+    while (next < end) {
+      const size_t stop = std::min(end, (next / grain + 1) * grain);
+      pieces_.push_back({next, stop, 0, 0});
+      next = stop;
+    }
+  };
+  std::vector<std::pair<size_t, size_t>> handed;
+  for (const Piece& r : runs) {
+    add_plain(r.node_begin);
+    pieces_.push_back(r);
+    next = r.node_end;
+    if (!handed.empty() && handed.back().second == r.tet_begin)
+      handed.back().second = r.tet_end;
+    else
+      handed.emplace_back(r.tet_begin, r.tet_end);
+  }
+  add_plain(nodes.size());
+  block_first_piece_.assign(1, 0);
+  size_t in_block = 0;
+  for (size_t p = 0; p < pieces_.size(); ++p) {
+    const size_t count = pieces_[p].node_end - pieces_[p].node_begin;
+    if (in_block > 0 && in_block + count > grain) {
+      block_first_piece_.push_back(p);
+      in_block = 0;
+    }
+    in_block += count;
+  }
+  block_first_piece_.push_back(pieces_.size());
+  blocks_.assign(block_first_piece_.size() - 1, {});
+  fused_tallies_.assign(blocks_.size(), {});
+  tet_system.hand_over(handed);
+  fused_ = &tet_system;
+  size_t fused_tets = 0;
+  for (const auto& [b, e] : handed) fused_tets += e - b;
+  return fused_tets;
+}
+
+// For each handed-over tet, the joint on each face and which tet corner each of its corners is
+// (PrivateTetForces), and whether its nodes have loaded faces. False, and nothing fused, if some joint's
+// side does not lie on one face of one such tet (not expected of a fracture zone's mesh).
+bool NodeIntegrationSystem::build_face_table(const std::vector<Piece>& runs) {
+  const Table& nodes = store_.table(solid::node_table);
+  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const size_t tet_count = conn.size() / 4;
+  std::vector<int32_t> node_tet(nodes.size(), -1);
+  for (const Piece& r : runs)
+    for (size_t e = r.tet_begin; e < r.tet_end; ++e)
+      for (size_t k = 0; k < 4; ++k) node_tet[static_cast<size_t>(conn[4 * e + k])] = static_cast<int32_t>(e);
+  face_joint_.assign(4 * tet_count, -1);
+  face_corners_.assign(4 * tet_count, 0);
+  loaded_.assign(tet_count, 0);
+  if (store_.has(solid::joint_table)) {
+    const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+    for (size_t j = 0; j < joint_nodes.size() / 6; ++j)
+      for (size_t side = 0; side < 2; ++side) {  // 0: A (takes the rows negated), 1: B
+        const int32_t* n = &joint_nodes[6 * j + 3 * side];
+        const int32_t e = node_tet[static_cast<size_t>(n[0])];
+        if (e < 0) continue;  // a tet that stays with the slot-list pass
+        int corner_sum = 0;
+        unsigned corners = 0;
+        for (int i = 0; i < 3; ++i) {
+          const int32_t k = n[i] - conn[4 * static_cast<size_t>(e)];
+          if (node_tet[static_cast<size_t>(n[i])] != e || k < 0 || k > 3) return false;
+          corner_sum += k;
+          corners |= static_cast<unsigned>(k) << (2 * i);
+        }
+        const size_t face = 4 * static_cast<size_t>(e) + static_cast<size_t>(6 - corner_sum);  // opposite
+        if (corner_sum < 3 || corner_sum > 6 || face_joint_[face] >= 0) return false;
+        face_joint_[face] = static_cast<int32_t>(2 * j + (side == 0 ? 1 : 0));
+        face_corners_[face] = static_cast<uint8_t>(corners);
+      }
+  }
+  // Loaded faces' slots come after the tets' (4 per tet) and the joints' (6 per joint).
+  const int64_t loads_first =
+      static_cast<int64_t>(conn.size()) +
+      (store_.has(solid::joint_table) ? 6 * static_cast<int64_t>(store_.table(solid::joint_table).size())
+                                      : 0);
+  const auto range = nodes.span<const int32_t>("slots");
+  const auto slot = store_.table(solid::slot_table).span<const int32_t>("slot");
+  for (size_t n = 0; n < nodes.size(); ++n)
+    if (node_tet[n] >= 0 && range[2 * n + 1] > range[2 * n] &&
+        slot[static_cast<size_t>(range[2 * n + 1] - 1)] >= loads_first)
+      loaded_[static_cast<size_t>(node_tet[n])] = 1;
+  return true;
 }
 
 }  // namespace rift

@@ -10,6 +10,7 @@
 #include "engine/scene/scene.hpp"
 #include "engine/schedule/system.hpp"
 #include "kernels/node_integration.hpp"
+#include "systems/tet_force_system.hpp"
 
 namespace rift {
 
@@ -27,6 +28,12 @@ class NodeIntegrationSystem : public System {
   // Also gather the per-node external forces of solid_node.<column> (3 per node; the fluid's), booked as
   // external work. Before the step graph is built.
   void add_external_node_force(std::string column) { external_column_ = std::move(column); }
+  // Computes the forces of the tets whose nodes are their own inside this pass, in runs of up to
+  // kFusedTets tets, each right before its nodes are integrated (TetForceSystem says why). Tets that
+  // share nodes stay with the tet system. The same bits as without; only the energy sums are added in
+  // another order. Before the step graph is built. Returns how many tets were handed over.
+  size_t fuse_tet_forces(TetForceSystem& tets);
+  static constexpr size_t kFusedTets = 128;  // 12 KB of corner forces: stays in L1 until the nodes read it
 
  private:
   Store& store_;
@@ -40,6 +47,23 @@ class NodeIntegrationSystem : public System {
   std::string external_column_;  // empty: none
   bool contact_ = false;         // solid_node.contact_force exists (a contact system gathers into it)
   bool crack_ = false;  // solid_node.crack_force exists (the surface loads gather crack faces into it)
+
+  // With fused tets (fuse_tet_forces): the nodes cut into pieces, each either plain nodes or the nodes of a
+  // run of tets [tet_begin, tet_end); pieces grouped into blocks of about `grain` nodes, in node order.
+  struct Piece {
+    size_t node_begin, node_end, tet_begin, tet_end;  // tet_begin == tet_end: no tets
+  };
+  void run_fused(const kernels::NodeIntegrationArgs& args, const kernels::ForceSlots& slots,
+                 const StepContext& ctx);
+  bool build_face_table(const std::vector<Piece>& runs);
+  TetForceSystem* fused_ = nullptr;
+  std::vector<Piece> pieces_;
+  std::vector<size_t> block_first_piece_;             // block b covers pieces [first[b], first[b + 1])
+  std::vector<TetForceSystem::Tally> fused_tallies_;  // one per block
+  std::vector<int32_t> face_joint_;                   // kernels::PrivateTetForces, 4 per tet
+  std::vector<uint8_t> face_corners_;                 // 4 per tet
+  std::vector<uint8_t> loaded_;                       // 1 per tet
+  std::vector<double> scratch_;  // 12 kFusedTets per thread of the arena, sized on the first step
 };
 
 }  // namespace rift

@@ -38,6 +38,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   tet_forces_ = std::make_unique<TetForceSystem>(store_, tet_materials_, std::move(prestress));
   integration_ = std::make_unique<NodeIntegrationSystem>(store_, velocity_conditions_, spec_.gravity,
                                                          spec_.mass_damping);
+  if (spec_.fused_tet_pass) fused_tets_ = integration_->fuse_tet_forces(*tet_forces_);
   stable_dt_ = tet_stable_dt_;
   joint_stable_dt_ = INFINITY;
   if (spec_.fracture) {
@@ -82,6 +83,8 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
       store_.table(solid::tet_table).size(), zone_tets_,
       100.0 * static_cast<double>(zone_tets_) / std::max<size_t>(1, store_.table(solid::tet_table).size()),
       store_.table(solid::node_table).size(), joints, crack_face_begin_);
+  if (fused_tets_ > 0)
+    spdlog::debug("solid: the node pass computes the forces of {} tets (solid.fused_tet_pass)", fused_tets_);
   spdlog::info(
       "solid: stable step {:.4g} s (tets {:.4g} s, set by tet {}; joints {:.4g} s; contact {:.4g} s)",
       stable_dt_, tet_stable_dt_, critical_tet_, joint_stable_dt_,

@@ -96,6 +96,7 @@ class SolidModel : public Model {
   kernels::MassScaling mass_scaling_;  // what solid.mass_scaling_step added (nothing when off)
   double mass0_ = 0.0;                 // the solid's mass before scaling [kg]
   size_t zone_tets_ = 0;
+  size_t fused_tets_ = 0;          // tets whose forces the node pass computes (solid.fused_tet_pass)
   std::vector<uint8_t> zone_;      // 1 per tet: in the fracture zone, i.e. with nodes of its own
   std::vector<double> tet_steps_;  // 1 per tet: its stable step (exact in the zone, else h / c_p) [s]
   double largest_energy_ = 0.0,

@@ -1,5 +1,7 @@
 #include "systems/tet_force_system.hpp"
 
+#include <algorithm>
+
 #include "engine/schedule/parallel.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -7,13 +9,31 @@ namespace rift {
 
 namespace {
 constexpr size_t grain = 1024;
+
+// [begin, end) cut at the multiples of grain.
+void add_blocks(size_t begin, size_t end, std::vector<std::pair<size_t, size_t>>& blocks) {
+  while (begin < end) {
+    const size_t stop = std::min(end, (begin / grain + 1) * grain);
+    blocks.emplace_back(begin, stop);
+    begin = stop;
+  }
+}
+}  // namespace
+
+TetForceSystem::Tally& TetForceSystem::Tally::operator+=(const Tally& o) {
+  if (o.status.first_inverted >= 0 &&
+      (status.first_inverted < 0 || o.status.first_inverted < status.first_inverted))
+    status.first_inverted = o.status.first_inverted;
+  status.inverted += o.status.inverted;
+  viscous_power += o.viscous_power;
+  return *this;
 }
 
 TetForceSystem::TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials,
                                std::vector<double> initial_stress)
     : store_(store), materials_(std::move(materials)), initial_stress_(std::move(initial_stress)) {
-  const size_t tets = store_.table(solid::tet_table).size();
-  blocks_.resize((tets + grain - 1) / grain);
+  add_blocks(0, store_.table(solid::tet_table).size(), own_blocks_);
+  tallies_.resize(own_blocks_.size());
 }
 
 Access TetForceSystem::access() const {
@@ -25,34 +45,75 @@ Access TetForceSystem::access() const {
            col(solid::energy_table, "damping")}};
 }
 
-void TetForceSystem::run(const StepContext& ctx) {
+Access TetForceSystem::fused_access() const {
+  Access a = access();
+  std::erase(a.writes, solid::col(solid::tet_table, "corner_force"));
+  return a;
+}
+
+kernels::TetForceArgs TetForceSystem::step_args(const StepContext& ctx) const {
   Table& nodes = store_.table(solid::node_table);
   Table& tets = store_.table(solid::tet_table);
-  kernels::TetForceArgs args{nodes.span<double>("x"), nodes.span<double>("v"), tets.span<int32_t>("nodes"),
-                             tets.span<double>("dm_inv"), tets.span<double>("volume0"),
-                             tets.span<int32_t>("material"), materials_, tets.span<double>("corner_force"),
-                             // Only outputs and the energy checks read these (StepContext::observed).
-                             ctx.observed ? tets.span<double>("stress") : std::span<double>{},
-                             ctx.observed ? tets.span<double>("energy") : std::span<double>{}};
-  const auto power = tets.span<double>("viscous_power");
-  args.viscous_power = power;
-  args.initial_stress = initial_stress_;
-  parallel_for(tets.size(), grain, [&](size_t begin, size_t end) {
-    Block& b = blocks_[begin / grain];
-    b.status = kernels::tet_forces(args, begin, end);
-    b.viscous_power = 0.0;
-    for (size_t e = begin; e < end; ++e) b.viscous_power += power[e];
+  kernels::TetForceArgs a{nodes.span<double>("x"), nodes.span<double>("v"), tets.span<int32_t>("nodes"),
+                          tets.span<double>("dm_inv"), tets.span<double>("volume0"),
+                          tets.span<int32_t>("material"), materials_, tets.span<double>("corner_force"),
+                          // Only outputs and the energy checks read these (StepContext::observed).
+                          ctx.observed ? tets.span<double>("stress") : std::span<double>{},
+                          ctx.observed ? tets.span<double>("energy") : std::span<double>{}};
+  a.viscous_power = tets.span<double>("viscous_power");
+  a.initial_stress = initial_stress_;
+  return a;
+}
+
+void TetForceSystem::run(const StepContext& ctx) {
+  const kernels::TetForceArgs a = step_args(ctx);
+  parallel_for(own_blocks_.size(), 1, [&](size_t b, size_t) {
+    const auto [begin, end] = own_blocks_[b];
+    Tally& t = tallies_[b];
+    t.status = kernels::tet_forces(a, begin, end);
+    t.viscous_power = 0.0;
+    for (size_t e = begin; e < end; ++e) t.viscous_power += a.viscous_power[e];
   });
   inverted_ = 0;
   first_inverted_ = -1;
-  double viscous_power = 0.0;
-  for (const auto& b : blocks_) {  // fixed block order: deterministic
-    inverted_ += b.status.inverted;
-    if (first_inverted_ < 0 && b.status.first_inverted >= 0) first_inverted_ = b.status.first_inverted;
-    viscous_power += b.viscous_power;
-  }
+  Tally total;
+  for (const Tally& t : tallies_) total += t;  // fixed block order: deterministic
+  book(ctx, total);
+}
+
+void TetForceSystem::book(const StepContext& ctx, const Tally& tally) {
+  Tally seen;
+  seen.status = {inverted_, first_inverted_};
+  seen += tally;
+  inverted_ = seen.status.inverted;
+  first_inverted_ = seen.status.first_inverted;
   // The damping force of this step acts over dt (the work integral's rectangle rule).
-  store_.table(solid::energy_table).span<double>("damping")[0] += ctx.dt * viscous_power;
+  store_.table(solid::energy_table).span<double>("damping")[0] += ctx.dt * tally.viscous_power;
+}
+
+void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ranges) {
+  own_blocks_.clear();
+  size_t next = 0;
+  for (const auto& [begin, end] : ranges) {
+    add_blocks(next, begin, own_blocks_);
+    next = end;
+  }
+  add_blocks(next, store_.table(solid::tet_table).size(), own_blocks_);
+  tallies_.assign(own_blocks_.size(), Tally{});
+}
+
+void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t end,
+                                  std::span<double> scratch, Tally& tally) {
+  a.corner_force = scratch;
+  a.corner_force_first = begin;
+  Tally t;
+  t.status = kernels::tet_forces(a, begin, end);
+  for (size_t e = begin; e < end; ++e) t.viscous_power += a.viscous_power[e];
+  tally += t;
+}
+
+void TetForceSystem::book_fused(const StepContext& ctx, const Tally& tally) {
+  book(ctx, tally);
 }
 
 }  // namespace rift

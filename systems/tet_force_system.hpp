@@ -2,6 +2,12 @@
 // Internal forces of the tetrahedra (compressible neo-Hookean + viscous damping + in-situ stress,
 // kernels/tet_forces). Reads node positions and velocities, writes each tet's corner forces, stress,
 // elastic energy and viscous power, and books the damping dissipation of the step in solid_energy.
+//
+// Tets with nodes of their own (a fracture zone's, numbered 4 in a row) may be handed over to the node
+// pass (NodeIntegrationSystem::fuse_tet_forces): it computes their forces with fused_forces() right before
+// it integrates their nodes, into a scratch block that stays in cache, so the corner forces of those tets
+// never go to memory and their nodes are read once per step instead of twice. run() then computes only
+// the other tets. A tet's forces are the same bits either way (kernels/tet_forces.hpp).
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -23,15 +29,36 @@ class TetForceSystem : public System {
   size_t inverted() const { return inverted_; }
   int64_t first_inverted() const { return first_inverted_; }
 
- private:
-  struct Block {
+  // What the tet pass books besides the forces: inverted tets and the viscous power [W].
+  struct Tally {
     kernels::TetForceStatus status;
     double viscous_power = 0.0;
+    Tally& operator+=(const Tally& o);  // in a fixed order: deterministic
   };
+  // From the next step on, run() skips tets [begin, end) of each range (sorted, disjoint); the node pass
+  // computes them. Before the step graph is built.
+  void hand_over(const std::vector<std::pair<size_t, size_t>>& ranges);
+  // The kernel's arguments for this step, corner forces to the corner_force column; for the node pass, once
+  // per step (it then points corner_force at its scratch).
+  kernels::TetForceArgs step_args(const StepContext& ctx) const;
+  // Handed-over tets [begin, end), for the node pass: corner forces into scratch (12 per tet, tet `begin`
+  // first), stress and energy (when observed) and viscous power into their columns; adds to tally.
+  static void fused_forces(kernels::TetForceArgs a, size_t begin, size_t end, std::span<double> scratch,
+                           Tally& tally);
+  // The node pass's tally of the handed-over tets in this step, after run() and the node pass.
+  void book_fused(const StepContext& ctx, const Tally& tally);
+  // The tets' columns the node pass reads and writes when it computes handed-over tets.
+  Access fused_access() const;
+
+ private:
+  void book(const StepContext& ctx, const Tally& tally);
+
   Store& store_;
   std::vector<kernels::TetMaterial> materials_;
   std::vector<double> initial_stress_;
-  std::vector<Block> blocks_;  // one per block, sized once
+  // The tets run() computes, in fixed blocks of at most `grain` (all tets, until hand_over), one tally each.
+  std::vector<std::pair<size_t, size_t>> own_blocks_;
+  std::vector<Tally> tallies_;
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;
 };

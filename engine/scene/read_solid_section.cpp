@@ -110,6 +110,7 @@ SolidSpec read_solid_section(MapReader& sec) {
               "a damping >= 0 1/s at every time (a number, a ramp that stays >= 0, or a table of "
               "values >= 0)");
   solid.mass_scaling_step = sec.real("mass_scaling_step", non_negative("s"), 0.0);
+  solid.fused_tet_pass = sec.boolean("fused_tet_pass", true);
   auto materials = sec.section_list("materials", 1);
   for (auto& m : materials) solid.materials.push_back(read_material(m));
   check_unique_names(sec, materials, solid.materials);

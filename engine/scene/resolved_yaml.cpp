@@ -224,6 +224,7 @@ void emit_solid(Lines& o, const SolidSpec& s) {
   o.line(1, "gravity", vec3(s.gravity));
   emit_time_function(o, 1, "mass_damping", s.mass_damping);
   o.line(1, "mass_scaling_step", yaml_real(s.mass_scaling_step));
+  o.line(1, "fused_tet_pass", s.fused_tet_pass ? "true" : "false");
   o.line(1, "materials");
   for (const auto& m : s.materials) emit_material(o, m);
   o.line(1, "initial_velocity", s.initial_velocity.empty() ? "[]" : "");

@@ -178,7 +178,7 @@ struct SolidSpec {
   // joints and contact) is below it get the mass that brings them to it; the step is then the per-node one.
   double mass_scaling_step = 0.0;
   // The node pass computes the forces of tets with nodes of their own (a fracture zone) and gathers their
-  // nodes per tet (systems/tet_force_system.hpp): the same physics, rounded in another order, 1.3 x faster
+  // nodes per tet (systems/tet_force_system.hpp): the same physics, rounded in another order, 1.25 x faster
   // on a jointed block. false: the tet pass and the per-node gather, for comparison.
   bool fused_tet_pass = true;
   std::optional<FractureSpec> fracture;             // absent: continuous mesh, no joints

@@ -129,19 +129,34 @@ NodeStepResult integrate(const NodeIntegrationArgs& a, const ForceSlots& s, size
 // How many tets ahead the private-tet pass prefetches its joints' rows.
 constexpr size_t kTetPrefetchAhead = 4;
 
+// The loaded-face rows (source 2) of the 4 nodes from `first` on.
+[[gnu::always_inline]] inline void prefetch_loaded_faces(const ForceSlots& s, size_t first) {
+  for (size_t n = first; n < first + 4; ++n)
+    for (int32_t k = s.node_range[2 * n + 1] - 1; k >= s.node_range[2 * n] && s.slots[k] >= s.first_slot[2];
+         --k) {
+      const double* row = s.source[2].data() + 3 * (s.slots[k] - s.first_slot[2]);
+      __builtin_prefetch(row);
+      __builtin_prefetch(row + 2);  // 24 B: may straddle two lines
+    }
+}
+
 template <bool Damped, bool WriteForce>
 NodeStepResult integrate_tets(const NodeIntegrationArgs& a, const PrivateTetForces& p, const ForceSlots& s,
                               size_t begin, size_t end, NodeStepResult r) {
   const Leapfrog lf(a);
   const double* rows = p.joint_rows.data();
   for (size_t e = begin; e < end; ++e) {
-    if (e + kTetPrefetchAhead < end)
+    if (e + kTetPrefetchAhead < end) {
+      const size_t ahead = e + kTetPrefetchAhead;
       for (int face = 0; face < 4; ++face) {
-        const int32_t ref = p.face_joint[4 * (e + kTetPrefetchAhead) + face];
+        const int32_t ref = p.face_joint[4 * ahead + face];
         if (ref < 0) continue;
         __builtin_prefetch(rows + 9 * (ref >> 1));
         __builtin_prefetch(rows + 9 * (ref >> 1) + 8);  // 72 B: may straddle two lines
       }
+      // Loaded faces are numbered along the surface, not along the tets: their rows miss without this.
+      if (p.loaded[ahead]) prefetch_loaded_faces(s, p.first_node + 4 * (ahead - p.tet_first));
+    }
     double f[4][3][3];  // corner, source, component
     const double* tet = p.tet_force.data() + 12 * (e - p.tet_first);
     for (int k = 0; k < 4; ++k)

@@ -11,10 +11,10 @@ namespace {
 constexpr size_t grain = 1024;
 
 // [begin, end) cut at the multiples of grain.
-void add_blocks(size_t begin, size_t end, std::vector<std::pair<size_t, size_t>>& blocks) {
+void add_runs(size_t begin, size_t end, std::vector<std::pair<size_t, size_t>>& runs) {
   while (begin < end) {
     const size_t stop = std::min(end, (begin / grain + 1) * grain);
-    blocks.emplace_back(begin, stop);
+    runs.emplace_back(begin, stop);
     begin = stop;
   }
 }
@@ -32,8 +32,18 @@ TetForceSystem::Tally& TetForceSystem::Tally::operator+=(const Tally& o) {
 TetForceSystem::TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials,
                                std::vector<double> initial_stress)
     : store_(store), materials_(std::move(materials)), initial_stress_(std::move(initial_stress)) {
-  add_blocks(0, store_.table(solid::tet_table).size(), own_blocks_);
-  tallies_.resize(own_blocks_.size());
+  add_runs(0, store_.table(solid::tet_table).size(), own_runs_);
+  set_blocks();
+}
+
+// Runs of the same grain-aligned stretch of tets form a block: without hand_over, exactly the blocks of
+// parallel_for(tets, grain).
+void TetForceSystem::set_blocks() {
+  block_first_run_.clear();
+  for (size_t r = 0; r < own_runs_.size(); ++r)
+    if (r == 0 || own_runs_[r].first / grain != own_runs_[r - 1].first / grain) block_first_run_.push_back(r);
+  block_first_run_.push_back(own_runs_.size());
+  tallies_.assign(block_first_run_.size() - 1, Tally{});
 }
 
 Access TetForceSystem::access() const {
@@ -67,12 +77,16 @@ kernels::TetForceArgs TetForceSystem::step_args(const StepContext& ctx) const {
 
 void TetForceSystem::run(const StepContext& ctx) {
   const kernels::TetForceArgs a = step_args(ctx);
-  parallel_for(own_blocks_.size(), 1, [&](size_t b, size_t) {
-    const auto [begin, end] = own_blocks_[b];
+  parallel_for(tallies_.size(), 1, [&](size_t b, size_t) {
     Tally& t = tallies_[b];
-    t.status = kernels::tet_forces(a, begin, end);
-    t.viscous_power = 0.0;
-    for (size_t e = begin; e < end; ++e) t.viscous_power += a.viscous_power[e];
+    t = Tally{};
+    for (size_t r = block_first_run_[b]; r < block_first_run_[b + 1]; ++r) {
+      const auto [begin, end] = own_runs_[r];
+      Tally run;
+      run.status = kernels::tet_forces(a, begin, end);
+      for (size_t e = begin; e < end; ++e) run.viscous_power += a.viscous_power[e];
+      t += run;
+    }
   });
   inverted_ = 0;
   first_inverted_ = -1;
@@ -92,14 +106,14 @@ void TetForceSystem::book(const StepContext& ctx, const Tally& tally) {
 }
 
 void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ranges) {
-  own_blocks_.clear();
+  own_runs_.clear();
   size_t next = 0;
   for (const auto& [begin, end] : ranges) {
-    add_blocks(next, begin, own_blocks_);
+    add_runs(next, begin, own_runs_);
     next = end;
   }
-  add_blocks(next, store_.table(solid::tet_table).size(), own_blocks_);
-  tallies_.assign(own_blocks_.size(), Tally{});
+  add_runs(next, store_.table(solid::tet_table).size(), own_runs_);
+  set_blocks();
 }
 
 void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t end,

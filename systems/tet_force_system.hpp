@@ -56,9 +56,13 @@ class TetForceSystem : public System {
   Store& store_;
   std::vector<kernels::TetMaterial> materials_;
   std::vector<double> initial_stress_;
-  // The tets run() computes, in fixed blocks of at most `grain` (all tets, until hand_over), one tally each.
-  std::vector<std::pair<size_t, size_t>> own_blocks_;
+  // The tets run() computes (all, until hand_over): runs of consecutive tets cut at the multiples of
+  // `grain`; block b covers runs [block_first_run_[b], block_first_run_[b + 1]), about `grain` tets, so a
+  // zone that leaves many short runs does not make as many tasks. One tally per block.
+  std::vector<std::pair<size_t, size_t>> own_runs_;
+  std::vector<size_t> block_first_run_;
   std::vector<Tally> tallies_;
+  void set_blocks();
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;
 };

@@ -30,8 +30,9 @@ class NodeIntegrationSystem : public System {
   void add_external_node_force(std::string column) { external_column_ = std::move(column); }
   // Computes the forces of the tets whose nodes are their own inside this pass, in runs of up to
   // kFusedTets tets, each right before its nodes are integrated (TetForceSystem says why). Tets that
-  // share nodes stay with the tet system. The same bits as without; only the energy sums are added in
-  // another order. Before the step graph is built. Returns how many tets were handed over.
+  // share nodes stay with the tet system. The same physics as without, rounded differently: a node's
+  // joint forces and the energy sums are added in another order. Before the step graph is built. Returns
+  // how many tets were handed over.
   size_t fuse_tet_forces(TetForceSystem& tets);
   static constexpr size_t kFusedTets = 128;  // 12 KB of corner forces: stays in L1 until the nodes read it
 

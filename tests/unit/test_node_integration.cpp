@@ -1,6 +1,8 @@
 // The node pass (kernels/node_integration.hpp): gathered forces, central difference, held components and
 // the work of each source, against a direct evaluation, on random slot lists; and the same bits whatever
 // the split of the node range (the kernel prefetches ahead inside its range and must not read past it).
+// The per-tet gather of the fused tet pass (integrate_private_tets) against the per-node one, on private
+// nodes with random joints and loaded faces.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,6 +26,7 @@ struct Problem {
   std::vector<uint8_t> free_mask;
   std::vector<int32_t> held;
 
+  Problem() = default;
   explicit Problem(size_t n) : nodes(n) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -144,6 +147,126 @@ TEST(NodeIntegration, CountsNonFiniteNodes) {
       }
   const NodeStepResult r = integrate_nodes(p.args(), p.force_slots(), 0, p.nodes);
   EXPECT_EQ(r.non_finite, hit);
+}
+
+}  // namespace
+}  // namespace rift::kernels
+
+namespace rift::kernels {
+namespace {
+
+// Tets with 4 private nodes each (node 4 e + k is corner k of tet e), a joint on random pairs of their
+// faces (side A's corners i facing side B's, as set-up pairs them), loaded-face slots on a few nodes: the
+// slot lists the per-node pass reads and the face table the per-tet pass reads, of the same forces.
+struct PrivateTets {
+  Problem p;
+  size_t tets;
+  std::vector<int32_t> face_joint;
+  std::vector<uint8_t> face_corners, loaded;
+
+  explicit PrivateTets(size_t t) : tets(t) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const size_t nodes = 4 * t;
+    face_joint.assign(4 * t, -1);
+    face_corners.assign(4 * t, 0);
+    loaded.assign(t, 0);
+    // Joints between random free faces; each node's joint slots, in the order the joints are made.
+    std::vector<std::vector<int32_t>> joint_slots(nodes);
+    std::uniform_int_distribution<size_t> tet(0, t - 1);
+    std::uniform_int_distribution<int> face(0, 3);
+    size_t joints = 0;
+    for (size_t attempt = 0; attempt < 3 * t; ++attempt) {
+      const size_t ea = tet(rng), eb = tet(rng);
+      const int fa = face(rng), fb = face(rng);
+      if (ea == eb || face_joint[4 * ea + fa] >= 0 || face_joint[4 * eb + fb] >= 0) continue;
+      const size_t j = joints++;
+      unsigned ca = 0, cb = 0;
+      for (int i = 0, ka = 0, kb = 0; i < 3; ++i, ++ka, ++kb) {
+        if (ka == fa) ++ka;  // the face's corners: all but the opposite one
+        if (kb == fb) ++kb;
+        ca |= static_cast<unsigned>(ka) << (2 * i);
+        cb |= static_cast<unsigned>(kb) << (2 * i);
+        joint_slots[4 * ea + static_cast<size_t>(ka)].push_back(static_cast<int32_t>(2 * (3 * j + i) + 1));
+        joint_slots[4 * eb + static_cast<size_t>(kb)].push_back(static_cast<int32_t>(2 * (3 * j + i)));
+      }
+      face_joint[4 * ea + fa] = static_cast<int32_t>(2 * j + 1);
+      face_joint[4 * eb + fb] = static_cast<int32_t>(2 * j);
+      face_corners[4 * ea + fa] = static_cast<uint8_t>(ca);
+      face_corners[4 * eb + fb] = static_cast<uint8_t>(cb);
+    }
+    const size_t face_rows = t / 3 + 1;
+    p.nodes = nodes;
+    for (size_t k = 0; k < 12 * t; ++k) p.tet_force.push_back(1e3 * unit(rng));
+    for (size_t k = 0; k < 9 * joints; ++k) p.joint_force.push_back(1e3 * unit(rng));
+    for (size_t k = 0; k < 3 * face_rows; ++k) p.face_force.push_back(1e2 * unit(rng));
+    p.first_slot[1] = static_cast<int64_t>(4 * t);
+    p.first_slot[2] = p.first_slot[1] + static_cast<int64_t>(6 * joints);
+    p.first_slot[3] = p.first_slot[2] + static_cast<int64_t>(face_rows);
+    std::uniform_int_distribution<size_t> row(0, face_rows - 1);
+    for (size_t n = 0; n < nodes; ++n) {
+      p.node_range.push_back(static_cast<int32_t>(p.slots.size()));
+      p.slots.push_back(static_cast<int32_t>(n));
+      for (int32_t s : joint_slots[n]) p.slots.push_back(static_cast<int32_t>(p.first_slot[1]) + s);
+      if (n % 7 == 0) {  // a loaded face or two
+        for (size_t k = 0; k < 1 + n % 2; ++k)
+          p.slots.push_back(static_cast<int32_t>(p.first_slot[2] + static_cast<int64_t>(row(rng))));
+        loaded[n / 4] = 1;
+      }
+      p.node_range.push_back(static_cast<int32_t>(p.slots.size()));
+    }
+    for (size_t k = 0; k < 3 * nodes; ++k) {
+      p.x.push_back(unit(rng));
+      p.v.push_back(0.1 * unit(rng));
+      p.free_mask.push_back(k % 17 == 0 ? 0 : 1);
+      p.held.push_back(k % 34 == 0 ? 0 : -1);
+    }
+    p.f.assign(3 * nodes, 0.0);
+    for (size_t n = 0; n < nodes; ++n) {
+      p.mass.push_back(1e-3 * (1.5 + unit(rng)));
+      p.inv_mass.push_back(n % 50 == 0 ? 0.0 : 1.0 / p.mass.back());
+    }
+    p.prescribed = {0.25, -0.5, 0.125};
+  }
+  PrivateTetForces tet_forces() const {
+    return {p.tet_force, 0, 0, p.joint_force, face_joint, face_corners, loaded};
+  }
+};
+
+// The per-tet gather adds a node's joint forces in face order instead of slot order: the same terms, so
+// the results agree to rounding (1e-12 relative: a sum of up to 5 terms of 1e3 reordered differs by a
+// few ulps of 1e3, far below 1e-12 of the velocity and force scales here).
+TEST(NodeIntegration, PerTetGatherAgreesWithThePerNodeOne) {
+  PrivateTets per_node(700), per_tet(700);
+  const NodeStepResult a = integrate_nodes(per_node.p.args(), per_node.p.force_slots(), 0, per_node.p.nodes);
+  const NodeStepResult b = integrate_private_tets(per_tet.p.args(), per_tet.tet_forces(),
+                                                  per_tet.p.force_slots(), 0, per_tet.tets);
+  for (size_t i = 0; i < per_node.p.x.size(); ++i) {
+    ASSERT_NEAR(per_tet.p.f[i], per_node.p.f[i], 1e-12 * (1.0 + std::abs(per_node.p.f[i]))) << i;
+    ASSERT_NEAR(per_tet.p.v[i], per_node.p.v[i], 1e-12 * (1.0 + std::abs(per_node.p.v[i]))) << i;
+    ASSERT_NEAR(per_tet.p.x[i], per_node.p.x[i], 1e-15) << i;
+  }
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(b.work[k], a.work[k], 1e-12 * (1e-9 + std::abs(a.work[k]))) << k;
+  EXPECT_EQ(b.non_finite, a.non_finite);
+  size_t with_joints = 0;
+  for (int32_t r : per_tet.face_joint) with_joints += r >= 0;
+  EXPECT_GT(with_joints, 1000u);  // most faces carry a joint
+}
+
+// Consecutive calls that pass the result on give the same bits as one call (the fused pass's runs).
+TEST(NodeIntegration, PerTetGatherSameBitsForAnySplit) {
+  PrivateTets whole(501), split(501);
+  const NodeStepResult r =
+      integrate_private_tets(whole.p.args(), whole.tet_forces(), whole.p.force_slots(), 0, whole.tets);
+  NodeStepResult sum;
+  for (size_t begin = 0, size = 1; begin < split.tets; begin += size, size = size * 2 + 1) {
+    const size_t end = std::min(split.tets, begin + size);
+    sum = integrate_private_tets(split.p.args(), split.tet_forces(), split.p.force_slots(), begin, end, sum);
+  }
+  EXPECT_EQ(whole.p.x, split.p.x);
+  EXPECT_EQ(whole.p.v, split.p.v);
+  EXPECT_EQ(whole.p.f, split.p.f);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(r.work[k], sum.work[k]) << k;
 }
 
 }  // namespace

@@ -73,10 +73,13 @@ TEST(FusedTetPass, AgreesWithTheSeparatePassesToRounding) {
   auto column = [](Simulation& s, const char* table, const char* name) {
     return s.world().store.table(table).span<const double>(name);
   };
-  // The two differ by the order in which up to 4 forces are added at a node: a relative 1e-16 per step,
-  // which a stable elastic response carries without growth beyond the step count (400). 1e-10 of the
-  // largest value leaves a factor 1e4 above that and is far below any physical difference (a joint
-  // force missed or counted twice would move the displacement field by more than 1e-3 of its size).
+  // The two differ by the order in which up to 4 forces are added at a node: a few ulps per step. The
+  // joint law then amplifies that wherever a point sits on a branch (the sign of its opening picks the
+  // compression or the tension curve, whose curvatures differ): measured 3e-13 of the largest velocity in
+  // the release build and 6.5e-9 in the sanitizer build, whose mesh differs. 1e-7 of the largest value
+  // admits that; a real error of the gather (a joint force missing, counted twice or of the wrong sign)
+  // moves these fields by more than 1e-3 of their size.
+  constexpr double tolerance = 1e-7;
   for (const char* name : {"x", "v"}) {
     const auto a = column(*fused, "solid_node", name), b = column(*separate, "solid_node", name);
     const auto x0 = column(*fused, "solid_node", "x0");
@@ -87,12 +90,12 @@ TEST(FusedTetPass, AgreesWithTheSeparatePassesToRounding) {
       diff = std::max(diff, std::abs(a[i] - b[i]));
     }
     EXPECT_GT(scale, 0.0) << name;
-    EXPECT_LE(diff, 1e-10 * scale) << name;
+    EXPECT_LE(diff, tolerance * scale) << name;
   }
   for (const char* name : {"tet_work", "joint_work", "external_work", "damping"}) {
     const double a = column(*fused, "solid_energy", name)[0], b = column(*separate, "solid_energy", name)[0];
     EXPECT_NE(b, 0.0) << name;
-    EXPECT_NEAR(a, b, 1e-10 * std::abs(b)) << name;
+    EXPECT_NEAR(a, b, tolerance * std::abs(b)) << name;
   }
   // The fused tets' corner forces never reach the column; the shared tets' still do.
   const auto fa = column(*fused, "solid_tet", "corner_force"),
@@ -108,7 +111,7 @@ TEST(FusedTetPass, AgreesWithTheSeparatePassesToRounding) {
   EXPECT_GT(written, 100u);
   const double stress = largest_abs(column(*separate, "solid_tet", "stress"));
   const auto sa = column(*fused, "solid_tet", "stress"), sb = column(*separate, "solid_tet", "stress");
-  for (size_t i = 0; i < sa.size(); ++i) ASSERT_NEAR(sa[i], sb[i], 1e-10 * stress) << "stress " << i;
+  for (size_t i = 0; i < sa.size(); ++i) ASSERT_NEAR(sa[i], sb[i], tolerance * stress) << "stress " << i;
 }
 
 TEST(FusedTetPass, SameBitsOnOneTwoAndFourThreadsWhileJointsBreak) {

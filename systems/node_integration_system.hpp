@@ -6,6 +6,7 @@
 // (solid_node.crack_force) the external ones.
 #include <vector>
 
+#include "engine/core/aligned_buffer.hpp"
 #include "engine/core/table.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/schedule/system.hpp"
@@ -64,7 +65,7 @@ class NodeIntegrationSystem : public System {
   std::vector<int32_t> face_joint_;                   // kernels::PrivateTetForces, 4 per tet
   std::vector<uint8_t> face_corners_;                 // 4 per tet
   std::vector<uint8_t> loaded_;                       // 1 per tet
-  std::vector<double> scratch_;  // 12 kFusedTets per thread of the arena, sized on the first step
+  AlignedBuffer scratch_;  // 12 kFusedTets doubles per thread of the arena, sized on the first step
 };
 
 }  // namespace rift

@@ -126,8 +126,4 @@ void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t 
   tally += t;
 }
 
-void TetForceSystem::book_fused(const StepContext& ctx, const Tally& tally) {
-  book(ctx, tally);
-}
-
 }  // namespace rift

@@ -45,14 +45,13 @@ class TetForceSystem : public System {
   // first), stress and energy (when observed) and viscous power into their columns; adds to tally.
   static void fused_forces(kernels::TetForceArgs a, size_t begin, size_t end, std::span<double> scratch,
                            Tally& tally);
-  // The node pass's tally of the handed-over tets in this step, after run() and the node pass.
-  void book_fused(const StepContext& ctx, const Tally& tally);
+  // Books a tally into this step's inverted count and damping: run()'s own, then the node pass's for the
+  // handed-over tets (after run()).
+  void book(const StepContext& ctx, const Tally& tally);
   // The tets' columns the node pass reads and writes when it computes handed-over tets.
   Access fused_access() const;
 
  private:
-  void book(const StepContext& ctx, const Tally& tally);
-
   Store& store_;
   std::vector<kernels::TetMaterial> materials_;
   std::vector<double> initial_stress_;

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/core/folder_name.hpp"
 #include "engine/core/log.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
@@ -57,7 +58,7 @@ int run(const RunArgs& args) {
   auto scene = read_scene(args.scene);
   if (!scene) return 2;
   RunOptions options;
-  options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / scene->name
+  options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / safe_folder_name(scene->name)
                                          : std::filesystem::path(args.out_dir);
   options.threads = args.threads;
   options.restart_latest = args.restart == "latest";
@@ -109,9 +110,9 @@ int sweep(const SweepArgs& args) {
   o.threads = args.threads;
   try {
     for (const auto& v : args.vary) o.axes.push_back(parse_sweep_axis(v));
-    o.out_dir = args.out_dir.empty()
-                    ? std::filesystem::path("rift-out") / ("sweep-" + load_scene(o.scene_path).name)
-                    : std::filesystem::path(args.out_dir);
+    o.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") /
+                                           safe_folder_name("sweep-" + load_scene(o.scene_path).name)
+                                     : std::filesystem::path(args.out_dir);
   } catch (const Error& e) {
     std::cerr << e.what() << "\n";
     return 2;

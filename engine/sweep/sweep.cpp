@@ -5,12 +5,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/core/spawn.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
@@ -146,22 +146,23 @@ std::string to_csv(const SweepOptions& o, const std::vector<std::string>& metric
 // The first Python that has matplotlib: the one on PATH, else Debian's (pyenv or a venv may shadow it).
 std::string python_with_matplotlib() {
   for (const char* py : {"python3", "/usr/bin/python3"})
-    if (std::system((std::string(py) + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) == 0) return py;
+    if (run_program({py, "-c", "import matplotlib"}) == 0) return py;
   return "";
 }
 
+// The plotter runs from an argument vector in the sweep's folder: the title (the scene's name) and the
+// folder's path reach it as plain arguments, never through a shell.
 std::string plot(const fs::path& dir, const std::string& title) {
   write_text_atomic(dir / "plot_sweep.py", kSweepPlotScript);
   const std::string py = python_with_matplotlib();
   if (py.empty())
     return "no plot: python3 with matplotlib is missing (Debian: apt-get install python3-matplotlib); then "
-           "run "
-           "python3 " +
+           "run python3 " +
            (dir / "plot_sweep.py").string() + " sweep.csv sweep.png";
-  const std::string cmd = "cd '" + dir.string() + "' && " + py + " plot_sweep.py sweep.csv sweep.png '" +
-                          title + "' >plot_sweep.log 2>&1";
-  if (std::system(cmd.c_str()) != 0)
-    return "no plot: plot_sweep.py failed, see " + (dir / "plot_sweep.log").string();
+  const fs::path log = dir / "plot_sweep.log";
+  fs::remove(log);
+  if (run_program({py, "plot_sweep.py", "sweep.csv", "sweep.png", title}, dir, log) != 0)
+    return "no plot: plot_sweep.py failed, see " + log.string();
   return "plot: " + (dir / "sweep.png").string();
 }
 

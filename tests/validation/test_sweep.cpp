@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/core/spawn.hpp"
 #include "engine/sweep/sweep.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 
@@ -24,6 +25,11 @@ SweepOptions single_joint_sweep(const fs::path& out) {
   o.axes = {parse_sweep_axis("solid.fracture.integration_points=3,7")};
   o.out_dir = out;
   return o;
+}
+
+bool has_matplotlib() {
+  return run_program({"python3", "-c", "import matplotlib"}) == 0 ||
+         run_program({"/usr/bin/python3", "-c", "import matplotlib"}) == 0;
 }
 
 TEST(Sweep, RunsEveryVariantAndScoresItAgainstTheReference) {
@@ -48,8 +54,7 @@ TEST(Sweep, RunsEveryVariantAndScoresItAgainstTheReference) {
   EXPECT_TRUE(fs::exists(dir / "s/sweep.csv"));
   EXPECT_TRUE(fs::exists(dir / "s/v000/summary.json"));
   EXPECT_TRUE(fs::exists(dir / "s/v001/summary.json"));
-  const bool matplotlib = std::system("python3 -c 'import matplotlib' >/dev/null 2>&1") == 0 ||
-                          std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
+  const bool matplotlib = has_matplotlib();
   if (matplotlib) {
     EXPECT_TRUE(fs::exists(dir / "s/sweep.png")) << r.plot_note;
   }
@@ -81,6 +86,26 @@ TEST(Sweep, WithoutAnAnalyticValueTheFinestVariantIsTheReference) {
   ASSERT_GT(r.rows[1].steps, r.rows[0].steps);  // the stiffer joint takes the smaller step: the finest
   EXPECT_EQ(*r.rows[1].errors[0], 0.0);
   EXPECT_GT(*r.rows[0].errors[0], 0.0);
+}
+
+// The scene's name is the plot's title: a hostile name reaches the plotter as text and runs nothing.
+TEST(Sweep, AHostileSceneNameRunsNoCommand) {
+  test::TempDir dir;
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir.path());
+  // --set values are YAML: a backtick may not start a plain scalar, so that one is double-quoted.
+  for (const std::string name : {"x'; touch owned; echo '", "$(touch owned)", "\"`touch owned`\""}) {
+    SweepOptions o = single_joint_sweep(dir / "s");
+    o.axes = {parse_sweep_axis("solid.fracture.integration_points=3")};
+    o.overrides = {"scene.name=" + name};
+    const SweepResult r = run_sweep(o);
+    EXPECT_EQ(r.rows.at(0).status, "done") << name;
+    if (has_matplotlib()) EXPECT_TRUE(fs::exists(dir / "s/sweep.png")) << name << ": " << r.plot_note;
+    EXPECT_FALSE(fs::exists(dir / "owned")) << name;
+    EXPECT_FALSE(fs::exists(dir / "s/owned")) << name;
+    fs::remove_all(dir / "s");
+  }
+  fs::current_path(cwd);
 }
 
 TEST(Sweep, ABadValueStopsTheSweepBeforeAnythingRuns) {

@@ -1,0 +1,102 @@
+#pragma once
+// One implicit (backward Euler) step of lubrication flow on a crack network: P1 control volumes on the
+// crack's mid-surface triangles (kernels/fracture_flow.hpp), a slightly compressible fluid, a fluid lag
+// ahead of the front, fixed-pressure vertices (a well under pressure control, a vent) and mass sources.
+//
+// Vertex roles:
+//   wet      the vertex's control volume is full: its pressure is an unknown of the step;
+//   filling  fluid has reached it but not filled it: it holds the lag pressure and takes in fluid;
+//   dry      no fluid: it holds the lag pressure; it starts filling once a wet neighbour pushes fluid in;
+//   fixed    its pressure is given (a reservoir): what flows in or out is booked as vented / supplied.
+// The step is mass conservative by construction: each edge's mass flux leaves one vertex and enters the
+// other (fluid never flows out of a vertex that is not wet). The linear solve uses rho V linearised about
+// the old pressure (storage S = rho0 V / K_f + rho C, symmetric positive definite with the Laplacian);
+// the new masses then give each wet vertex's pressure through the equation of state exactly.
+//
+// The volume a vertex offers may depend on its pressure within the step: V(p) = V_pred + C (p - p_applied),
+// where C is the compliance of the walls over the step (the solid's nodes move under the pressure change;
+// systems/fracture_flow/fracture_flow_system.cpp). Closing that loop inside the step keeps the fluid's
+// stiffness K_f / w from entering the explicit solid's stable step.
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "kernels/fracture_flow.hpp"
+
+namespace rift {
+
+enum class FlowRole : uint8_t { dry = 0, filling = 1, wet = 2, fixed = 3 };
+
+struct NetworkFlowStepInput {
+  double dt = 0.0;
+  double time = 0.0;                       // at the end of the step (wetting times)
+  std::span<const double> triangle_x;      // 9 per triangle: mid-surface corners
+  std::span<const double> aperture;        // 3 per triangle: hydraulic aperture at the corners (floored)
+  std::span<const double> volume;          // 1 per vertex: V_pred [m^3]
+  std::span<const double> compliance;      // 1 per vertex: C [m^3/Pa], >= 0
+  std::span<const double> applied;         // 1 per vertex: p_applied, the pressure V_pred already felt
+  std::span<const double> source;          // 1 per vertex: mass rate in [kg/s]
+  std::span<const double> fixed_pressure;  // 1 per vertex: the pressure of a fixed vertex
+};
+
+struct NetworkFlowState {
+  std::span<double> pressure;      // 1 per vertex [Pa]
+  std::span<double> mass;          // 1 per vertex [kg]
+  std::span<uint8_t> role;         // 1 per vertex (FlowRole)
+  std::span<double> wetting_time;  // 1 per vertex [s], -1 until fluid first reaches the vertex
+  std::span<double> exchanged;     // 1 per vertex, added to: mass a fixed vertex gave the network [kg]
+};
+
+// Running totals. Mass: the change of the network's mass (sum of every vertex's, fixed ones included)
+// equals sourced + the fixed vertices' exchanged, to rounding.
+struct NetworkFlowBooks {
+  double sourced = 0.0;      // mass the sources put in [kg]
+  double dissipation = 0.0;  // viscous dissipation [J]: sum over steps and edges of dt T_e (p_i - p_j)^2
+};
+
+class NetworkFlow {
+ public:
+  NetworkFlow(kernels::FluidEos eos, double viscosity, double lag_pressure);
+
+  // The network: triangles on vertex ids [0, vertex_count). Builds the edges and the matrix pattern; call
+  // again whenever triangles are added.
+  void set_network(std::span<const int32_t> triangles, size_t vertex_count);
+
+  // One step: updates state, adds to books. Returns "" or what went wrong (a failed factorisation, a
+  // non-finite pressure, fluid drawn from an empty vertex); the caller then stops the run with that
+  // diagnosis, since the state is part-way through the step.
+  std::string step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& books);
+
+  size_t edge_count() const { return edge_v_.size() / 2; }
+  size_t negative_transmissibilities() const { return negative_; }  // edges opposite obtuse angles, last step
+
+ private:
+  void transmissibilities(const NetworkFlowStepInput& in);
+  double edge_transmissibility(size_t e, const NetworkFlowState& s) const;
+  std::string solve_pressures(const NetworkFlowStepInput& in, const NetworkFlowState& s);
+  std::string zero_viscosity_step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& b);
+  // After the masses moved: fixed vertices refill to their pressure (booked as exchanged), wet ones take
+  // the pressure of their mass, filling ones turn wet once full, and a wet one whose pressure would fall
+  // below the lag pressure cavitates back to filling.
+  std::string update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s);
+
+  kernels::FluidEos eos_;
+  double viscosity_, lag_pressure_;
+  size_t vertices_ = 0;
+  std::vector<int32_t> triangles_;
+  std::vector<int32_t> edge_v_;         // 2 per edge, i < j, sorted
+  std::vector<int32_t> triangle_edge_;  // 3 per triangle: the edge opposite each corner
+  std::vector<double> transmissibility_, edge_density_;
+  std::vector<double> new_pressure_;
+  std::vector<int32_t> component_;                  // zero-viscosity mode: each vertex's connected component
+  std::vector<int32_t> diagonal_slot_, edge_slot_;  // positions in the matrix's value array
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
+  Eigen::VectorXd rhs_, solution_;
+  size_t negative_ = 0;
+};
+
+}  // namespace rift

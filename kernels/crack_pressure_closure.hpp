@@ -1,0 +1,43 @@
+#pragma once
+// The fluid in a crack is a spring across it of stiffness K_f A / w per unit area, far stiffer than the
+// rock's joints once the crack is thin, and an explicit solid step that felt it through last step's
+// pressure would have to shrink its stable step to it. The closure takes that spring implicitly inside
+// each explicit step (docs/hydraulic-fracture.md, "Stability"):
+//   1. the node pass moves the nodes with the pressure p_applied that was on the faces (predictor);
+//   2. the wet faces' corner nodes would move further, by dt^2 g dp a / m, under a pressure change dp,
+//      where a is the node's pressure area vector (the sum of A/3 n over its wet faces, signed so that a
+//      positive pressure opens the crack) and g = 1 / (1 + c dt / 2) the mass damping's factor; a vertex's
+//      volume therefore grows by C dp with C = dt^2 g sum over its nodes of |a|^2 / m;
+//   3. the flow solves its step with V(p) = V_pred + C (p - p_applied) (systems/fracture_flow/network_flow);
+//   4. the nodes take the correction for dp = p_new - p_applied, so positions, velocities and the crack's
+//      volume all belong to the new pressure.
+// A node sees the pressure of its own vertex only (the lumped load: each corner carries A/3 of its face),
+// so C is diagonal: no coupled solve is needed for the closure.
+#include <cstdint>
+#include <span>
+
+namespace rift::kernels {
+
+struct CrackClosureNodes {
+  std::span<const int32_t> vertex;      // 1 per node: the network vertex whose pressure acts on it, or -1
+  std::span<const double> area_vector;  // 3 per node: a [m^2]
+  std::span<const double> inv_mass;     // 1 per node
+  std::span<const uint8_t> free_mask;   // 3 per node: 0 for a held component (it takes no correction)
+};
+
+// Adds each wet triangle's pressure area vectors to its corners: corner k of side A (first face) gets
+// +A/3 n, its facing corner on side B gets -A/3 n (n from B into A, the crack triangle's normal).
+// corner_nodes: 6 per triangle (the joint's corners); normal 3 and area 1 per triangle.
+void add_pressure_area_vectors(std::span<const int32_t> corner_nodes, std::span<const double> normal,
+                               std::span<const double> area, std::span<double> area_vector);
+
+// C per vertex (added to `compliance`): dt^2 g sum over nodes of the vertex of sum_free a_d^2 / m.
+void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double damping_factor,
+                            std::span<double> compliance);
+
+// The correction for the pressure change dp per vertex: x += dt^2 g dp a / m, v += dt g dp a / m on the
+// free components of every node with a vertex.
+void apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,
+                   std::span<const double> pressure_change, std::span<double> x, std::span<double> v);
+
+}  // namespace rift::kernels

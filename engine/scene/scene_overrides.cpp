@@ -1,6 +1,7 @@
 #include "engine/scene/scene_overrides.hpp"
 
 #include <cctype>
+#include <charconv>
 
 namespace rift {
 namespace {
@@ -17,26 +18,38 @@ bool is_key_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
 }
 
-// Parses "a.b[1].c"; nullopt when it is not of that form.
-std::optional<std::vector<PathStep>> parse_path(const std::string& text) {
+// Parses the key path "a.b[1].c" of the override `where`. Reports and returns nullopt when it is not of
+// that form or an index is too large to be one.
+std::optional<std::vector<PathStep>> parse_path(const std::string& text, const SourceLocation& where,
+                                                ReadContext& ctx) {
+  const auto malformed = [&] {
+    ctx.error(where, "", kSyntax, "the key path '" + text + "'");
+    return std::nullopt;
+  };
   std::vector<PathStep> steps;
   size_t i = 0;
   while (true) {
     PathStep step;
     while (i < text.size() && is_key_char(text[i])) step.key += text[i++];
-    if (step.key.empty()) return std::nullopt;
+    if (step.key.empty()) return malformed();
     while (i < text.size() && text[i] == '[') {
       const size_t close = text.find(']', i);
-      if (close == std::string::npos || close == i + 1) return std::nullopt;
+      if (close == std::string::npos || close == i + 1) return malformed();
       const std::string digits = text.substr(i + 1, close - i - 1);
       for (char c : digits)
-        if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
-      step.indices.push_back(std::stoul(digits));
+        if (!std::isdigit(static_cast<unsigned char>(c))) return malformed();
+      size_t index = 0;
+      if (std::from_chars(digits.data(), digits.data() + digits.size(), index).ec != std::errc()) {
+        ctx.error(where, text.substr(0, close + 1), "a list index",
+                  "index " + digits + ", which is out of range");
+        return std::nullopt;
+      }
+      step.indices.push_back(index);
       i = close + 1;
     }
     steps.push_back(std::move(step));
     if (i == text.size()) return steps;
-    if (text[i] != '.') return std::nullopt;
+    if (text[i] != '.') return malformed();
     ++i;
   }
 }
@@ -116,11 +129,8 @@ void apply_override(YamlNode& root, const std::string& text, ReadContext& ctx) {
     ctx.error(where, "", kSyntax, "no '=' in '" + text + "'");
     return;
   }
-  const auto steps = parse_path(text.substr(0, eq));
-  if (!steps) {
-    ctx.error(where, "", kSyntax, "the key path '" + text.substr(0, eq) + "'");
-    return;
-  }
+  const auto steps = parse_path(text.substr(0, eq), where, ctx);
+  if (!steps) return;
   YamlParseResult value = parse_yaml_tree(text.substr(eq + 1), where.file, /*override_origin=*/true);
   if (value.error) {
     value.error->key_path = text.substr(0, eq);

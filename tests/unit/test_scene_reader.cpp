@@ -300,6 +300,21 @@ TEST(SceneOverrides, BadValuesAndMalformedOverrides) {
   EXPECT_EQ(read_one_error(kMinimal, {"scene.name.first=1"}).expected, "a mapping to set 'first' in");
 }
 
+TEST(SceneOverrides, IndexTooLargeForAnIndexIsReported) {
+  // 2^64 and beyond do not fit a list index; the path is reported, not the conversion's exception.
+  for (const std::string index : {"18446744073709551616", "99999999999999999999"}) {
+    const std::string text = "solid.materials[" + index + "].density=1";
+    const SceneDiagnostic d = read_one_error(kWithSolid, {text});
+    EXPECT_EQ(d.format(), "--set " + text + ": solid.materials[" + index +
+                              "]: expected a list index, found index " + index + ", which is out of range");
+  }
+  // The largest index that fits is an index: the list is too short for it.
+  const SceneDiagnostic fits =
+      read_one_error(kWithSolid, {"solid.materials[18446744073709551615].density=1"});
+  EXPECT_EQ(fits.key_path, "solid.materials[18446744073709551615]");
+  EXPECT_EQ(fits.found, "index 18446744073709551615");
+}
+
 // --- Time functions ------------------------------------------------------------------------------
 
 std::string pressure(const std::string& value) {

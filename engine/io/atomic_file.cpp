@@ -34,10 +34,8 @@ void fsync_path(const std::filesystem::path& path, int flags) {
 
 }  // namespace
 
-AtomicPath::AtomicPath(std::filesystem::path target) : target_(std::move(target)) {
-  temp_ = target_;
-  temp_ += ".tmp-" + std::to_string(::getpid());
-}
+AtomicPath::AtomicPath(std::filesystem::path target)
+    : target_(std::move(target)), temp_(temp_for(target_, ::getpid())) {}
 
 AtomicPath::~AtomicPath() {
   if (!committed_) {
@@ -65,6 +63,12 @@ bool AtomicPath::is_temp_name(const std::filesystem::path& path) {
   for (size_t i = at + 5; i < name.size(); ++i)
     if (name[i] < '0' || name[i] > '9') return false;
   return true;
+}
+
+std::filesystem::path AtomicPath::temp_for(const std::filesystem::path& target, pid_t pid) {
+  std::filesystem::path temp = target;
+  temp += ".tmp-" + std::to_string(pid);
+  return temp;
 }
 
 void write_text_atomic(const std::filesystem::path& path, std::string_view text) {

@@ -3,6 +3,8 @@
 // sibling `<target>.tmp-<pid>`, flushed to disk and renamed over the target, so a run killed at any
 // moment leaves either the previous complete file or the new complete file, never a torn one.
 // rename(2) is atomic only within one file system, which the sibling temp guarantees.
+#include <sys/types.h>
+
 #include <filesystem>
 #include <string_view>
 
@@ -27,6 +29,8 @@ class AtomicPath {
 
   // True for names produced by temp(): "anything.tmp-<digits>".
   static bool is_temp_name(const std::filesystem::path& path);
+  // The temporary file the process `pid` writes for `target`: exactly what temp() is in that process.
+  static std::filesystem::path temp_for(const std::filesystem::path& target, pid_t pid);
 
  private:
   std::filesystem::path target_;

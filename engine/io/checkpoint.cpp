@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <set>
 
@@ -159,37 +160,59 @@ CheckpointSet::CheckpointSet(std::filesystem::path out_dir, int keep)
         std::to_string(keep));
 }
 
-std::filesystem::path CheckpointSet::path_for(int64_t step) const {
-  char name[48];
-  std::snprintf(name, sizeof name, "ckpt_%010lld.h5", static_cast<long long>(step));
-  return dir_ / name;
-}
-
 namespace {
 
-// "ckpt_<10+ digits>.h5" -> step; anything else (temp files included) -> -1.
+std::string checkpoint_name(int64_t step) {
+  char name[48];
+  std::snprintf(name, sizeof name, "ckpt_%010lld.h5", static_cast<long long>(step));
+  return name;
+}
+
+// "ckpt_<step:010>.h5" as checkpoint_name writes it -> step; anything else (temp files, other zero
+// padding, more digits than a step has) -> -1, so that pruning deletes only files of our own naming.
 int64_t step_of(const std::string& name) {
   constexpr std::string_view prefix = "ckpt_", suffix = ".h5";
   if (name.size() < prefix.size() + 10 + suffix.size() || !name.starts_with(prefix) ||
       !name.ends_with(suffix))
     return -1;
-  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  if (digits.size() > 18 ||
-      !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return -1;
-  return std::stoll(digits);
+  const char* first = name.data() + prefix.size();
+  const char* last = name.data() + name.size() - suffix.size();
+  if (!std::all_of(first, last, [](char c) { return c >= '0' && c <= '9'; })) return -1;
+  int64_t step = -1;
+  const auto [end, ec] = std::from_chars(first, last, step);
+  return ec == std::errc() && end == last && checkpoint_name(step) == name ? step : -1;
 }
 
-// A temp file "<...>.tmp-<pid>" whose writer process is gone (ESRCH); our own and live ones stay.
-bool is_orphan_temp(const std::filesystem::path& path) {
-  if (!AtomicPath::is_temp_name(path)) return false;
+// The writer's pid when `path` is exactly the temp file AtomicPath names for one of our checkpoints
+// ("ckpt_<step:010>.h5.tmp-<pid>"); nullopt for any other name, a pid part that is no pid included, so
+// that pruning never touches a file some other program (or a person) put there.
+std::optional<pid_t> checkpoint_temp_writer(const std::filesystem::path& path) {
   const std::string name = path.filename().string();
-  const long pid = std::stol(name.substr(name.rfind(".tmp-") + 5));
-  if (pid <= 0 || pid == ::getpid()) return false;
-  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+  const size_t at = name.rfind(".tmp-");
+  if (at == std::string::npos) return std::nullopt;
+  const int64_t step = step_of(name.substr(0, at));
+  if (step < 0) return std::nullopt;
+  const char* first = name.data() + at + 5;
+  const char* last = name.data() + name.size();
+  pid_t pid = 0;
+  const auto [end, ec] = std::from_chars(first, last, pid);
+  if (ec != std::errc() || end != last || pid <= 0) return std::nullopt;
+  if (AtomicPath::temp_for(checkpoint_name(step), pid) != name) return std::nullopt;  // "+1", "01"
+  return pid;
+}
+
+// One of our checkpoint temp files whose writer process is gone (ESRCH); our own and live ones stay.
+bool is_orphan_temp(const std::filesystem::path& path) {
+  const std::optional<pid_t> pid = checkpoint_temp_writer(path);
+  if (!pid || *pid == ::getpid()) return false;
+  return ::kill(*pid, 0) != 0 && errno == ESRCH;
 }
 
 }  // namespace
+
+std::filesystem::path CheckpointSet::path_for(int64_t step) const {
+  return dir_ / checkpoint_name(step);
+}
 
 std::vector<std::pair<int64_t, std::filesystem::path>> CheckpointSet::list() const {
   std::vector<std::pair<int64_t, std::filesystem::path>> out;
@@ -225,8 +248,7 @@ void CheckpointSet::prune() const {
   for (auto it = std::filesystem::directory_iterator(dir_, ec);
        !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
     std::error_code ignored;  // a leftover another process removes first is not an error
-    if (it->path().filename().string().starts_with("ckpt_") && is_orphan_temp(it->path()))
-      std::filesystem::remove(it->path(), ignored);
+    if (is_orphan_temp(it->path())) std::filesystem::remove(it->path(), ignored);
   }
 }
 

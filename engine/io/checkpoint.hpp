@@ -52,8 +52,9 @@ class CheckpointSet {
   const std::filesystem::path& dir() const { return dir_; }
   std::filesystem::path path_for(int64_t step) const;
 
-  // Writes the checkpoint for meta.step, then deletes all but the newest `keep` checkpoints and any
-  // temporary file left by a run that no longer exists.
+  // Writes the checkpoint for meta.step, then deletes all but the newest `keep` checkpoints and the
+  // temporary files our writer left for them ("ckpt_<step:010>.h5.tmp-<pid>") whose process no longer
+  // exists. Any other file in the folder is left alone.
   std::filesystem::path write(const Store& store, const CheckpointMeta& meta);
 
   // The newest checkpoint that opens as a Rift checkpoint; temp leftovers and truncated or foreign

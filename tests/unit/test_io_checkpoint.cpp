@@ -263,6 +263,35 @@ TEST(CheckpointSet, KeepsTheNewestAndFindsTheLatestReadable) {
   expect_same(store, restored);
 }
 
+TEST(CheckpointSet, PruningLeavesTempNamesItDidNotWriteAlone) {
+  // Only "ckpt_<step:010>.h5.tmp-<pid>" with a dead pid is a leftover of ours; a pid part too large for a
+  // pid, with a leading zero or a sign, or a checkpoint name we do not write, is someone else's file.
+  test::TempDir dir;
+  Store store;
+  build_schema(store);
+  fill(store);
+  CheckpointSet set(dir.path(), 1);
+  std::filesystem::create_directories(set.dir());
+  const std::string dead = std::to_string(dead_pid());
+  const auto orphan = set.dir() / ("ckpt_0000000100.h5.tmp-" + dead);
+  const std::vector<std::string> foreign{
+      "ckpt_000100.h5.tmp-99999999999999999999", "ckpt_0000000100.h5.tmp-99999999999999999999",
+      "ckpt_0000000100.h5.tmp-2147483648",       "ckpt_0000000100.h5.tmp-0" + dead,
+      "ckpt_0000000100.h5.tmp--" + dead,         "ckpt_100.h5.tmp-" + dead,
+      "ckpt_00000000100.h5.tmp-" + dead,         "other.h5.tmp-" + dead};
+  std::ofstream(orphan) << "partial";
+  for (const auto& name : foreign) std::ofstream(set.dir() / name) << "not ours";
+  const auto other_padding = set.dir() / "ckpt_00000000005.h5";  // not a name of ours: never pruned
+  std::ofstream(other_padding) << "not ours";
+
+  for (int64_t step : {10, 20}) EXPECT_EQ(set.write(store, sample_meta(step)), set.path_for(step));
+  EXPECT_FALSE(std::filesystem::exists(orphan));
+  for (const auto& name : foreign) EXPECT_TRUE(std::filesystem::exists(set.dir() / name)) << name;
+  EXPECT_TRUE(std::filesystem::exists(other_padding));
+  EXPECT_FALSE(std::filesystem::exists(set.path_for(10)));
+  EXPECT_EQ(set.latest(), set.path_for(20));
+}
+
 TEST(CheckpointSet, KeepMustBePositive) {
   test::TempDir dir;
   EXPECT_THROW(CheckpointSet(dir.path(), 0), Error);

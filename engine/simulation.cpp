@@ -4,14 +4,13 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/core/state_hash.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/io/time_series_csv.hpp"
 #include "engine/io/xdmf_series.hpp"
 #include "engine/progress.hpp"
 #include "rift/build_info.hpp"
@@ -42,14 +41,18 @@ Simulation::Simulation(Scene scene, RunOptions options)
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
   check_background_access();
   choose_dt();
+  if (options_.write_output)
+    checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
+  // A restart reads what it continues (checkpoint, time series) before anything in the folder changes, so
+  // a refused restart leaves the interrupted run's files as they were.
+  if (options_.restart_latest) restart_from_latest();
   if (options_.write_output) {
     std::filesystem::create_directories(options_.out_dir);
     open_log_file(options_.out_dir / "rift.log");
     write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
     series_ = std::make_unique<XdmfSeries>(options_.out_dir, "rift");
-    checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
+    if (options_.restart_latest) series_->resume(time());
   }
-  if (options_.restart_latest) restart_from_latest();
 }
 
 Simulation::~Simulation() {
@@ -159,17 +162,13 @@ void Simulation::restart_from_latest() {
   step_ = meta.step;
   for (const auto& m : world_->models) m->restored(StepContext{step_, time(), dt_});
   outputs_written_ = meta.integers.count("outputs_written") ? meta.integers.at("outputs_written") : 0;
-  series_->resume(time());
-  // Reload the time series up to the restart step.
-  std::ifstream csv(options_.out_dir / "timeseries.csv");
-  std::string line;
-  if (std::getline(csv, line)) {
-    while (std::getline(csv, line)) {
-      std::istringstream row(line);
-      std::vector<double> values;
-      for (std::string cell; std::getline(row, cell, ',');) values.push_back(std::stod(cell));
-      if (!values.empty() && values[0] <= static_cast<double>(step_)) metric_rows_.push_back(values);
-    }
+  // The rows up to the restart step continue into the rewritten time series.
+  try {
+    metric_rows_ = read_time_series(options_.out_dir / "timeseries.csv", step_);
+  } catch (const Error& e) {
+    throw Error(std::string("--restart latest: ") + e.what() +
+                ". The restart carries that file's rows on into the continued run: repair the line, or move "
+                "the file away to continue without the earlier rows.");
   }
   spdlog::info("restarted from {} at step {}, t = {:.6g} s", latest->string(), step_, time());
 }
@@ -302,14 +301,7 @@ void Simulation::record_metrics() {
 // The time series is rewritten (atomically) with each field output and checkpoint, not on every
 // metrics row: an fsync per step would dominate small runs.
 void Simulation::write_time_series() const {
-  std::string csv = "step,time";
-  for (const auto& n : metric_names_) csv += "," + n;
-  csv += "\n";
-  for (const auto& r : metric_rows_) {
-    for (size_t i = 0; i < r.size(); ++i) csv += fmt::format("{}{:.17g}", i ? "," : "", r[i]);
-    csv += "\n";
-  }
-  write_text_atomic(options_.out_dir / "timeseries.csv", csv);
+  write_text_atomic(options_.out_dir / "timeseries.csv", format_time_series(metric_names_, metric_rows_));
   for (const auto& m : world_->models) m->write_logs(options_.out_dir);
 }
 

@@ -5,10 +5,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
+#include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 
 using namespace rift;
@@ -29,6 +31,30 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 using test::run_scene;
+
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> fields(1);
+  for (char c : line)
+    if (c == ',')
+      fields.emplace_back();
+    else
+      fields.back() += c;
+  return fields;
+}
+
+std::string joined(const std::vector<std::string>& fields) {
+  std::string line;
+  for (size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + fields[i];
+  return line;
+}
+
+// Every file under `dir` with its bytes.
+std::map<fs::path, std::string> files_in(const fs::path& dir) {
+  std::map<fs::path, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[e.path()] = test::slurp(e.path());
+  return files;
+}
 
 }  // namespace
 
@@ -72,6 +98,49 @@ TEST(Run, RestartAfterAFractureIsBitwiseIdentical) {
   EXPECT_NE(sa.find("tensile"), std::string::npos) << sa;
   fs::remove_all(a);
   fs::remove_all(b);
+}
+
+TEST(Run, RestartRefusesADamagedTimeSeriesAndLeavesTheFolderAlone) {
+  // The restart carries timeseries.csv's rows on, so a field that is no number, one beyond a double's
+  // range, or a row cut short is reported with the file, line and field, before any file changes.
+  const Scene scene = small_scene();
+  const fs::path dir = fresh_dir("damaged_series");
+  run_scene(scene, dir, 1, 10);
+  const fs::path csv = dir / "timeseries.csv";
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(csv);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  ASSERT_GT(lines.size(), 6u);
+  const std::vector<std::string> header = fields_of(lines[0]), row = fields_of(lines[5]);  // line 6
+  ASSERT_EQ(row.size(), header.size());
+  std::vector<std::string> abc = row, huge = row, cut = row;
+  abc[1] = "abc";
+  huge[2] = "1e999999";
+  cut.pop_back();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {abc, ":6: field 2 (time): expected a number, found 'abc'"},
+      {huge, ":6: field 3 (" + header[2] +
+                 "): expected a number, found '1e999999', which is out of range of a double"},
+      {cut, ":6: expected " + std::to_string(header.size()) + " fields as in the header, found " +
+                std::to_string(cut.size())},
+  };
+  for (const auto& [damaged, message] : cases) {
+    lines[5] = joined(damaged);
+    std::string text;
+    for (const auto& l : lines) text += l + "\n";
+    std::ofstream(csv) << text;
+    const auto before = files_in(dir);
+    RunOptions o;
+    o.out_dir = dir;
+    o.progress = false;
+    o.restart_latest = true;
+    const std::string m = test::error_of([&] { Simulation(scene, o); });
+    EXPECT_NE(m.find("--restart latest: " + csv.string() + message), std::string::npos) << m;
+    EXPECT_TRUE(files_in(dir) == before) << "the refused restart changed " << dir;
+  }
+  fs::remove_all(dir);
 }
 
 TEST(Run, FractureZoneMaterialWithoutFracturePropertiesIsRefused) {

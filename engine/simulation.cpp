@@ -10,6 +10,7 @@
 #include "engine/core/state_hash.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/io/output_dir.hpp"
 #include "engine/io/time_series_csv.hpp"
 #include "engine/io/xdmf_series.hpp"
 #include "engine/progress.hpp"
@@ -47,7 +48,7 @@ Simulation::Simulation(Scene scene, RunOptions options)
   // a refused restart leaves the interrupted run's files as they were.
   if (options_.restart_latest) restart_from_latest();
   if (options_.write_output) {
-    std::filesystem::create_directories(options_.out_dir);
+    create_output_dir(options_.out_dir);
     open_log_file(options_.out_dir / "rift.log");
     write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
     series_ = std::make_unique<XdmfSeries>(options_.out_dir, "rift");

@@ -5,7 +5,11 @@
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
+
+#include "engine/core/error.hpp"
 
 namespace rift {
 
@@ -39,13 +43,23 @@ void buffer_log_messages() {
 void open_log_file(const std::filesystem::path& file) {
   if (!sinks) init_logging(false, false);
   close_log_file();
+  const std::string cannot = "cannot open the log file '" + file.string() + "': ";
+  if (early) {
+    std::ofstream out(file, std::ios::app);
+    if (!out) throw Error(cannot + std::strerror(errno));
+    for (const auto& line : early->last_formatted()) out << line;
+  }
+  std::shared_ptr<spdlog::sinks::sink> sink;
+  try {
+    sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string(), false);
+  } catch (const spdlog::spdlog_ex& e) {  // its message names the file and the OS reason
+    throw Error(cannot + e.what());
+  }
   if (early) {
     sinks->remove_sink(early);
-    std::ofstream out(file, std::ios::app);
-    for (const auto& line : early->last_formatted()) out << line;
     early.reset();
   }
-  file_sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(file.string(), false);
+  file_sink = std::move(sink);
   file_sink->set_pattern(file_pattern);
   file_sink->set_level(spdlog::level::debug);
   sinks->add_sink(file_sink);

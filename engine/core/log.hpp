@@ -11,7 +11,9 @@ void init_logging(bool verbose, bool quiet);
 // Keeps the messages logged from now on until open_log_file, which writes them first: a run logs its
 // set-up before it knows the input is good, and creates its output folder only after that.
 void buffer_log_messages();
-void open_log_file(const std::filesystem::path& file);  // appends; replaces a previous log file
+// Appends; replaces a previous log file. Throws rift::Error naming the file and the OS reason when it
+// cannot be opened.
+void open_log_file(const std::filesystem::path& file);
 void close_log_file();
 
 }  // namespace rift

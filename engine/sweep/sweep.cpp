@@ -12,6 +12,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/spawn.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/output_dir.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
 #include "engine/sweep/reference_metrics.hpp"
@@ -183,16 +184,22 @@ SweepResult run_sweep(const SweepOptions& o) {
   }
   const json def = definition(o, result.metric_names);
   const fs::path state = o.out_dir / "sweep.json";
-  if (fs::exists(state)) {
+  std::error_code ec;
+  if (fs::exists(state, ec)) {
     std::ifstream in(state);
     const json old = json::parse(in, nullptr, false);
-    if (old.is_discarded() || old.value("definition", json()) != def)
+    if (!old.is_object() || old.value("definition", json()) != def)
       throw Error("rift sweep: " + o.out_dir.string() +
                   " holds a different sweep (sweep.json); give another --out, "
                   "or remove that folder to start again");
-    for (const auto& r : old.at("rows")) result.rows.push_back(row_from_json(r));
+    try {
+      for (const auto& r : old.at("rows")) result.rows.push_back(row_from_json(r));
+    } catch (const json::exception& e) {
+      throw Error("rift sweep: " + state.string() + " is damaged (" + e.what() +
+                  "); remove that folder to start the sweep again");
+    }
   }
-  fs::create_directories(o.out_dir);
+  create_output_dir(o.out_dir);
   auto save = [&] {
     std::sort(result.rows.begin(), result.rows.end(),
               [](const auto& a, const auto& b) { return a.index < b.index; });
@@ -206,7 +213,10 @@ SweepResult run_sweep(const SweepOptions& o) {
     if (std::any_of(result.rows.begin(), result.rows.end(), [&](const auto& r) { return r.index == int(i); }))
       continue;
     const fs::path dir = o.out_dir / fmt::format("v{:03d}", i);
-    fs::remove_all(dir);
+    fs::remove_all(dir, ec);  // what an interrupted variant left: it runs again from the start
+    if (ec)
+      throw Error("rift sweep: cannot remove " + dir.string() +
+                  " to run that variant again: " + ec.message());
     SweepRow row;
     row.index = static_cast<int>(i);
     const auto d = digits_of(i, o.axes);

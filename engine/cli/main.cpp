@@ -1,5 +1,8 @@
 // rift: command-line entry point. The subcommands live in engine/cli/commands.cpp.
 #include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <new>
 
 #include "engine/cli/commands.hpp"
 
@@ -49,10 +52,23 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (*run_cmd) return run(run_args);
-  if (*check_cmd) return check(check_args);
-  if (*info_cmd) return info();
-  if (*graph_cmd) return graph(graph_args, graph_threads);
-  if (*sweep_cmd) return sweep(sweep_args);
+  // The commands report what a user or a run can run into (rift::Error) themselves. Anything else is a
+  // defect of Rift: it still ends with a message and exit 1, not an abort.
+  try {
+    if (*run_cmd) return run(run_args);
+    if (*check_cmd) return check(check_args);
+    if (*info_cmd) return info();
+    if (*graph_cmd) return graph(graph_args, graph_threads);
+    if (*sweep_cmd) return sweep(sweep_args);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "rift: internal error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "rift: internal error: " << e.what() << "\n";
+    return 1;
+  } catch (...) {
+    std::cerr << "rift: internal error: an exception of unknown type\n";
+    return 1;
+  }
   return 2;
 }

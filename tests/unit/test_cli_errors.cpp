@@ -1,0 +1,177 @@
+// The rift binary on input and folders it cannot use: a message naming what and where, exit 2 (bad input,
+// nothing written) or 1, never an abort on an exception.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "tests/unit/test_io_temp_dir.hpp"
+
+namespace rift {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliResult {
+  int exit_code;       // 128 + the signal when it was killed by one
+  std::string output;  // stdout and stderr
+};
+
+std::string shell_quoted(const std::string& arg) {
+  std::string out = "'";
+  for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+CliResult rift(const std::vector<std::string>& args) {
+  std::string command = shell_quoted(RIFT_EXECUTABLE);
+  for (const auto& a : args) command += " " + shell_quoted(a);
+  command += " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::string output;
+  char buffer[4096];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
+}
+
+// The built-in quickstart scene, a few steps of it.
+std::vector<std::string> quick_run(const fs::path& out, std::vector<std::string> more = {}) {
+  std::vector<std::string> args{"run", "--out", out.string(), "--set", "time.end=2.0e-6", "--quiet"};
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+TEST(Cli, SetIndexOutOfRangeIsBadInput) {
+  test::TempDir dir;
+  const std::string set = "solid.materials[99999999999999999999].density=1";
+  const CliResult r = rift(quick_run(dir / "out", {"--set", set}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--set " + set +
+                          ": solid.materials[99999999999999999999]: expected a list index, "
+                          "found index 99999999999999999999, which is out of range"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(Cli, OutputFolderThatIsARegularFileIsRefused) {
+  test::TempDir dir;
+  const fs::path file = dir / "somefile";
+  std::ofstream(file) << "not a folder";
+  const CliResult r = rift(quick_run(file));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("output folder '" + file.string() +
+                          "' exists and is not a folder (it is a regular file)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(test::slurp(file), "not a folder");
+
+  const CliResult under = rift(quick_run(file / "x"));
+  EXPECT_EQ(under.exit_code, 2) << under.output;
+  EXPECT_NE(under.output.find("cannot create output folder '" + (file / "x").string() + "': Not a directory"),
+            std::string::npos)
+      << under.output;
+}
+
+TEST(Cli, SweepOutputFolderThatIsARegularFileIsRefused) {
+  test::TempDir dir;
+  const fs::path file = dir / "somefile";
+  std::ofstream(file) << "not a folder";
+  const CliResult r = rift({"sweep", std::string(RIFT_SOURCE_DIR) + "/scenes/examples/quickstart.yaml",
+                            "--vary", "time.end=2.0e-6,4.0e-6", "--out", file.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("output folder '" + file.string() + "' exists and is not a folder"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(Cli, OutputFolderTheSystemRefusesIsReported) {
+  const CliResult r = rift(quick_run("/proc/rift-x"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot create output folder '/proc/rift-x': "), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnwritableOutputFolderIsReported) {
+  if (::geteuid() == 0)
+    GTEST_SKIP()
+        << "running as root: permission bits do not stop root's writes, so a 0555 folder is writable";
+  test::TempDir dir;
+  const fs::path locked = dir / "locked";
+  fs::create_directories(locked);
+  fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                              fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  const CliResult r = rift(quick_run(locked));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot write into output folder '" + locked.string() + "': Permission denied"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::is_empty(locked));
+  const CliResult below = rift(quick_run(locked / "run"));
+  EXPECT_EQ(below.exit_code, 2) << below.output;
+  EXPECT_NE(
+      below.output.find("cannot create output folder '" + (locked / "run").string() + "': Permission denied"),
+      std::string::npos)
+      << below.output;
+  fs::permissions(locked, fs::perms::owner_all);
+}
+
+TEST(Cli, LogFileThatCannotBeOpenedIsReported) {
+  test::TempDir dir;
+  fs::create_directories(dir / "out" / "rift.log");  // a folder where the log file goes
+  const CliResult r = rift(quick_run(dir / "out"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(
+      r.output.find("cannot open the log file '" + (dir / "out" / "rift.log").string() + "': Is a directory"),
+      std::string::npos)
+      << r.output;
+}
+
+TEST(Cli, RestartFromADamagedTimeSeriesIsRefused) {
+  test::TempDir dir;
+  const fs::path out = dir / "out";
+  const CliResult first = rift(quick_run(out, {"--stop-after", "5"}));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(out / "timeseries.csv");
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  ASSERT_GT(lines.size(), 3u);
+  lines[2] = "1,1e999999" + lines[2].substr(lines[2].find(',', 2));  // line 3: step 1, time out of range
+  std::string text;
+  for (const auto& l : lines) text += l + "\n";
+  std::ofstream(out / "timeseries.csv") << text;
+  const CliResult r = rift(quick_run(out, {"--restart", "latest"}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find((out / "timeseries.csv").string() +
+                          ":3: field 2 (time): expected a number, found '1e999999', which is out of range"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(test::slurp(out / "timeseries.csv"), text);
+}
+
+TEST(Cli, StrayCheckpointTempFilesAreLeftAlone) {
+  test::TempDir dir;
+  const fs::path out = dir / "out";
+  fs::create_directories(out / "checkpoints");
+  const std::vector<std::string> stray{"ckpt_000100.h5.tmp-99999999999999999999",
+                                       "ckpt_0000000100.h5.tmp-99999999999999999999"};
+  for (const auto& name : stray) std::ofstream(out / "checkpoints" / name) << "not ours";
+  const CliResult r = rift(quick_run(out, {"--set", "checkpoint.every_steps=5"}));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& name : stray) EXPECT_TRUE(fs::exists(out / "checkpoints" / name)) << name;
+  int written = 0;
+  for (const auto& e : fs::directory_iterator(out / "checkpoints")) written += e.path().extension() == ".h5";
+  EXPECT_GT(written, 0) << "the run wrote no checkpoint";
+}
+
+}  // namespace
+}  // namespace rift

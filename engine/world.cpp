@@ -17,6 +17,7 @@
 #include "systems/coupling/fluid_solid_model.hpp"
 #include "systems/fluid/fluid_model.hpp"
 #include "systems/fluid/fluid_tables.hpp"
+#include "systems/fracture_flow/fracture_flow_model.hpp"
 #include "systems/mesh_conversion_model.hpp"
 #include "systems/solid_model.hpp"
 
@@ -123,6 +124,9 @@ std::unique_ptr<World> build_world(const Scene& scene) {
   world->mesh_quality = measure_quality(world->mesh);
   if (scene.solid)
     world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  if (scene.fracture_flow)  // right after the solid: its step follows the node pass
+    world->models.push_back(std::make_unique<FractureFlowModel>(
+        world->store, static_cast<SolidModel&>(*world->models.front()), world->mesh, *scene.fracture_flow));
   // The continuous meshes only when something consumes them: the adaptive fluid mesh (before the fluid,
   // whose first mesh follows the solid's surface), or an output that asks for the surface (last).
   MeshConversionModel* conversion = nullptr;

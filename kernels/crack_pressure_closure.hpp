@@ -18,26 +18,32 @@
 
 namespace rift::kernels {
 
+// The wet corner nodes, listed once each (entry i is solid node node[i]).
 struct CrackClosureNodes {
-  std::span<const int32_t> vertex;      // 1 per node: the network vertex whose pressure acts on it, or -1
-  std::span<const double> area_vector;  // 3 per node: a [m^2]
-  std::span<const double> inv_mass;     // 1 per node
-  std::span<const uint8_t> free_mask;   // 3 per node: 0 for a held component (it takes no correction)
+  std::span<const int32_t> node;        // 1 per entry: the solid node
+  std::span<const int32_t> vertex;      // 1 per entry: the network vertex whose pressure acts on it
+  std::span<const double> area_vector;  // 3 per entry: a [m^2]
+  std::span<const double> inv_mass;     // 1 per solid node
+  std::span<const uint8_t> free_mask;   // 3 per solid node: 0 for a held component (no correction)
 };
 
 // Adds each wet triangle's pressure area vectors to its corners: corner k of side A (first face) gets
 // +A/3 n, its facing corner on side B gets -A/3 n (n from B into A, the crack triangle's normal).
-// corner_nodes: 6 per triangle (the joint's corners); normal 3 and area 1 per triangle.
-void add_pressure_area_vectors(std::span<const int32_t> corner_nodes, std::span<const double> normal,
+// corner_entries: 6 per triangle, the entries (rows of area_vector) of the joint's corners; normal 3 and
+// area 1 per triangle.
+void add_pressure_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
                                std::span<const double> area, std::span<double> area_vector);
 
-// C per vertex (added to `compliance`): dt^2 g sum over nodes of the vertex of sum_free a_d^2 / m.
+// C per vertex (added to `compliance`): dt^2 g sum over the vertex's entries of sum_free a_d^2 / m.
 void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double damping_factor,
                             std::span<double> compliance);
 
-// The correction for the pressure change dp per vertex: x += dt^2 g dp a / m, v += dt g dp a / m on the
-// free components of every node with a vertex.
-void apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,
-                   std::span<const double> pressure_change, std::span<double> x, std::span<double> v);
+// The correction for each entry's pressure change, from `felt` (what its node felt in the node pass) to
+// `now`: x += dt^2 g dp a / m, v += dt g dp a / m on the free components (x, v: 3 per solid node).
+// Returns the work of the pressure forces that the correction adds to the node pass's trapezoid book:
+// dp a . dt (v + dv / 2) + felt a . dt dv / 2 per component (v the node pass's new velocity).
+double apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,
+                     std::span<const double> felt, std::span<const double> now, std::span<double> x,
+                     std::span<double> v);
 
 }  // namespace rift::kernels

@@ -29,6 +29,8 @@ class NodeIntegrationSystem : public System {
   // Also gather the per-node external forces of solid_node.<column> (3 per node; the fluid's), booked as
   // external work. Before the step graph is built.
   void add_external_node_force(std::string column) { external_column_ = std::move(column); }
+  // Gathers solid_node.crack_force (added after this system was made) as an external force.
+  void read_crack_forces() { crack_ = true; }
   // Computes the forces of the tets whose nodes are their own inside this pass, in runs of up to
   // kFusedTets tets, each right before its nodes are integrated (TetForceSystem says why). Tets that
   // share nodes stay with the tet system. The same physics as without, rounded differently: a node's

@@ -104,6 +104,11 @@ void SolidModel::accept_fluid_forces() {
   integration_->add_external_node_force("fluid_force");
 }
 
+void SolidModel::accept_crack_fluid_forces() {
+  store_.table(solid::node_table).add<double>("crack_force", 3);
+  integration_->read_crack_forces();
+}
+
 void SolidModel::add_node_mass(std::span<const double> extra) {
   Table& nodes = store_.table(solid::node_table);
   auto mass = nodes.span<double>("mass");

@@ -57,6 +57,10 @@ class SolidModel : public Model {
   // The fluid's forces on the nodes (systems/coupling): adds solid_node.fluid_force (3, zero), which the
   // node pass gathers as an external force. Before the step graph is built.
   void accept_fluid_forces();
+  // The fracture flow's forces on the crack faces' nodes (systems/fracture_flow): adds
+  // solid_node.crack_force (3, zero), which the node pass gathers as an external force. Before the step
+  // graph is built.
+  void accept_crack_fluid_forces();
   const SolidSpec& spec() const { return spec_; }
   // The scene's boundary condition behind each load index of solid_load_face.load.
   const std::vector<SolidBoundarySpec>& load_conditions() const { return load_conditions_; }

@@ -94,6 +94,20 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
                    : has_fluid ? "a fluid"
                                : "neither") +
                   " only");
+  const bool has_fracture_flow = doc.has("fracture_flow");
+  MapReader fracture_flow = doc.section("fracture_flow", false);
+  if (has_fracture_flow) {
+    scene.fracture_flow = read_fracture_flow_section(fracture_flow);
+    if (!has_solid || !scene.solid->fracture)
+      doc.error("fracture_flow",
+                "a fracture_flow section only with a solid.fracture section (the cracks it fills)",
+                "no fracture zone in the scene");
+    else if (scene.solid->fracture->crack_pressure)
+      doc.error("fracture_flow",
+                "either fracture_flow or solid.fracture.crack_pressure: the prescribed crack pressure is the "
+                "limit of this flow (no viscosity, no compressibility), and both would press the cracks",
+                "both are given; remove solid.fracture.crack_pressure");
+  }
   MapReader output = doc.section("output", false);
   scene.output = read_output_section(output);
   MapReader checkpoint = doc.section("checkpoint", false);

@@ -9,10 +9,11 @@
 
 namespace rift {
 
-inline constexpr std::array<std::string_view, 18> kOutputFieldNames{
-    "displacement",  "velocity", "force",      "stress", "principal_stress", "region",
-    "material",      "damage",   "opening",    "slip",   "broken",           "energy",
-    "contact_force", "pressure", "divergence", "cfl",    "solid_fraction",   "fluid_force"};
+inline constexpr std::array<std::string_view, 20> kOutputFieldNames{
+    "displacement", "velocity",       "force",         "stress",   "principal_stress",
+    "region",       "material",       "damage",        "opening",  "slip",
+    "broken",       "energy",         "contact_force", "pressure", "divergence",
+    "cfl",          "solid_fraction", "fluid_force",   "aperture", "wetting_time"};
 
 // Whether an output that asked for `fields` (empty: every field) wants the field `name`.
 inline bool wants_field(const std::vector<std::string>& fields, std::string_view name) {

@@ -301,6 +301,27 @@ void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(1, "coupling", c.coupling == FluidSolidSpec::Coupling::sequential ? "sequential" : "concurrent");
 }
 
+void emit_fracture_flow(Lines& o, const FractureFlowSpec& f) {
+  o.line(0, "fracture_flow");
+  o.line(1, "density", yaml_real(f.density));
+  o.line(1, "viscosity", yaml_real(f.viscosity));
+  o.line(1, "bulk_modulus", yaml_real(f.bulk_modulus));
+  o.line(1, "reference_pressure", yaml_real(f.reference_pressure));
+  o.line(1, "aperture_floor", yaml_real(f.aperture_floor));
+  o.line(1, "lag_pressure", yaml_real(f.lag_pressure));
+  o.line(1, "initial_pressure", yaml_real(f.initial_pressure));
+  o.line(1, "interval", std::to_string(f.interval));
+  o.line(1, "injection");
+  o.line(2, "point", vec3(f.point));
+  if (f.rate) emit_time_function(o, 2, "rate", *f.rate);
+  if (f.pressure) emit_time_function(o, 2, "pressure", *f.pressure);
+  o.line(2, "well_volume", yaml_real(f.well_volume));
+  o.line(2, "well_compliance", yaml_real(f.well_compliance));
+  o.line(1, "vent_pressure", f.vent_pressure ? yaml_real(*f.vent_pressure) : "null");
+  o.line(1, "leak_off", yaml_real(f.leak_off));
+  o.line(1, "spurt", yaml_real(f.spurt));
+}
+
 void emit_checkpoint(Lines& o, const CheckpointSpec& c) {
   o.line(0, "checkpoint");
   o.line(1, "every_steps", std::to_string(c.every_steps));
@@ -338,6 +359,7 @@ std::string emit_resolved_yaml(const Scene& scene) {
   if (scene.solid) emit_solid(o, *scene.solid);
   if (scene.fluid) emit_fluid(o, *scene.fluid);
   if (scene.fluid_solid) emit_fluid_solid(o, *scene.fluid_solid);
+  if (scene.fracture_flow) emit_fracture_flow(o, *scene.fracture_flow);
   emit_output(o, scene.output);
   emit_checkpoint(o, scene.checkpoint);
   emit_reference(o, scene.reference);

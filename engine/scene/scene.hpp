@@ -266,6 +266,30 @@ struct FluidSolidSpec {
   Coupling coupling = Coupling::sequential;
 };
 
+// Fluid in the fractures (systems/fracture_flow, docs/hydraulic-fracture.md): lubrication flow of a
+// slightly compressible fluid on the crack network (broken joints and initial cracks), injected at a
+// well. Needs solid.fracture; not with solid.fracture.crack_pressure (the prescribed limit of this flow).
+struct FractureFlowSpec {
+  double density = 1000.0;          // rho0 [kg/m^3] at reference_pressure
+  double viscosity = 1.0e-3;        // mu [Pa s]; 0: zero-viscosity mode (one pressure per connected crack)
+  double bulk_modulus = 2.2e9;      // K_f [Pa]
+  double reference_pressure = 0.0;  // p0 [Pa]: rho(p0) = rho0
+  double aperture_floor = 1.0e-6;   // [m]: hydraulic aperture and storage never below it
+  double lag_pressure = 0.0;        // [Pa]: held by crack regions the fluid has not reached
+  double initial_pressure = 0.0;    // [Pa]: the fluid filling the initial cracks at t = 0
+  int64_t interval = 1;             // solid steps per flow solve (in between: each vertex on its own)
+  // The well: the crack vertex nearest `point` (within an element of it), given extra storage.
+  std::array<double, 3> point{};
+  std::optional<TimeFunction> rate;      // injected volume rate at rho0 [m^3/s] (one of rate, pressure)
+  std::optional<TimeFunction> pressure;  // well pressure [Pa]
+  double well_volume = 0.0;              // [m^3]: the borehole and line the injection fills first
+  double well_compliance = 0.0;          // [m^3/Pa]: the line's and pump's compliance
+  // Crack vertices on the solid's outer surface hold this pressure and take what flows out (absent: sealed).
+  std::optional<double> vent_pressure;
+  double leak_off = 0.0;  // Carter coefficient C_L [m/s^0.5]: each wet face loses C_L / sqrt(t - t_wet)
+  double spurt = 0.0;     // [m]: volume per face area lost at wetting
+};
+
 struct TimeSpec {
   double end = 0.0;                // simulated end time [s]
   std::optional<double> dt;        // requested step [s]; absent: safety x stable step, or fluid.dt
@@ -305,7 +329,8 @@ struct Scene {
   MeshSpec mesh;                   // neither file nor generate when absent (a fluid scene with fluid.mesh)
   std::optional<SolidSpec> solid;  // absent: no solid systems in the run
   std::optional<FluidSpec> fluid;  // absent: no fluid; with a solid, fluid.mesh is required
-  std::optional<FluidSolidSpec> fluid_solid;  // with both a solid and a fluid (defaults when not written)
+  std::optional<FluidSolidSpec> fluid_solid;      // with both a solid and a fluid (defaults when not written)
+  std::optional<FractureFlowSpec> fracture_flow;  // fluid in the cracks (needs solid.fracture)
   OutputSpec output;
   CheckpointSpec checkpoint;
   std::vector<ReferenceMetricSpec> reference;  // empty: the scene names no error metrics

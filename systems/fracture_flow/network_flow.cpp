@@ -174,10 +174,14 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
     s.mass[v] += in.dt * in.source[v];
     books.sourced += in.dt * in.source[v];
   }
-  return update_roles(in, s);
+  return update_roles(in, s, true);
 }
 
-std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s) {
+std::string NetworkFlow::local_step(const NetworkFlowStepInput& in, NetworkFlowState& s) {
+  return update_roles(in, s, false);
+}
+
+std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s, bool from_solve) {
   for (size_t v = 0; v < vertices_; ++v) {
     auto role = FlowRole(s.role[v]);
     if (role == FlowRole::fixed) {
@@ -205,7 +209,7 @@ std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlo
     // that has just filled takes the pressure of its mass.
     double p = lag_pressure_;
     if (role == FlowRole::wet)
-      p = FlowRole(s.role[v]) == FlowRole::wet
+      p = from_solve && FlowRole(s.role[v]) == FlowRole::wet
               ? new_pressure_[v]
               : kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], in.compliance[v], in.applied[v]);
     if (role == FlowRole::wet && p < lag_pressure_) {

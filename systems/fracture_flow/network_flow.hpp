@@ -65,6 +65,10 @@ class NetworkFlow {
   // again whenever triangles are added.
   void set_network(std::span<const int32_t> triangles, size_t vertex_count);
 
+  // A step in which no fluid moves between vertices: each keeps its mass (plus what the caller added) and
+  // takes the pressure of its own volume; fixed vertices refill. Between flow solves (`interval`).
+  std::string local_step(const NetworkFlowStepInput& in, NetworkFlowState& s);
+
   // One step: updates state, adds to books. Returns "" or what went wrong (a failed factorisation, a
   // non-finite pressure, fluid drawn from an empty vertex); the caller then stops the run with that
   // diagnosis, since the state is part-way through the step.
@@ -81,7 +85,8 @@ class NetworkFlow {
   // After the masses moved: fixed vertices refill to their pressure (booked as exchanged), wet ones take
   // the pressure of their mass, filling ones turn wet once full, and a wet one whose pressure would fall
   // below the lag pressure cavitates back to filling.
-  std::string update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s);
+  // from_solve: wet vertices keep the solve's pressure (else they take the pressure of their mass).
+  std::string update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s, bool from_solve);
 
   kernels::FluidEos eos_;
   double viscosity_, lag_pressure_;

@@ -21,6 +21,7 @@ struct Piston {
   static constexpr double L = 0.01, w0 = 2e-6, k = 1e9, m = 1e-3, c = 2e5;
   std::vector<double> x, v, rest, area_vector, inv_mass;
   std::vector<int32_t> vertex{0, 1, 2, 0, 1, 2}, corners{0, 1, 2, 3, 4, 5}, triangle{0, 1, 2};
+  std::vector<int32_t> node{0, 1, 2, 3, 4, 5};
   std::vector<uint8_t> free_mask = std::vector<uint8_t>(18, 1);
   double area = 0.5 * L * L;
   Piston() {
@@ -34,7 +35,7 @@ struct Piston {
     const double n[3] = {0, 0, 1};
     kernels::add_pressure_area_vectors(corners, n, std::span<const double>(&area, 1), area_vector);
   }
-  kernels::CrackClosureNodes nodes() const { return {vertex, area_vector, inv_mass, free_mask}; }
+  kernels::CrackClosureNodes nodes() const { return {node, vertex, area_vector, inv_mass, free_mask}; }
   // Springs, the pressure p on the faces, and one damped leapfrog step.
   void explicit_step(double dt, std::span<const double> p) {
     const double g = 1.0 / (1.0 + c * dt / 2.0);
@@ -72,9 +73,12 @@ double run_piston(Piston& pz, double dt, int steps, bool closure, double fluid_m
     const std::vector<double> volume = pz.volumes();
     NetworkFlowStepInput in{dt, dt * (s + 1), tx, aperture, volume, compliance, applied, source, fixed};
     if (!flow.step(in, st, books).empty()) return std::nan("");
-    std::vector<double> dp(3);
-    for (size_t i = 0; i < 3; ++i) dp[i] = pressure[i] - applied[i];
-    if (closure) kernels::apply_closure(pz.nodes(), dt, g, dp, pz.x, pz.v);
+    std::vector<double> felt(6), now(6);
+    for (size_t i = 0; i < 6; ++i) {
+      felt[i] = applied[size_t(pz.vertex[i])];
+      now[i] = pressure[size_t(pz.vertex[i])];
+    }
+    if (closure) kernels::apply_closure(pz.nodes(), dt, g, felt, now, pz.x, pz.v);
     applied = pressure;
     if (!std::isfinite(pressure[0]) || std::abs(pz.x[2] - Piston::w0) > 1.0) return std::nan("");
   }

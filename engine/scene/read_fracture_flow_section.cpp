@@ -1,0 +1,44 @@
+// fracture_flow: the fluid in the cracks (docs/scene-format.md, docs/hydraulic-fracture.md).
+#include "engine/scene/scene_sections.hpp"
+
+namespace rift {
+
+FractureFlowSpec read_fracture_flow_section(MapReader& f) {
+  FractureFlowSpec spec;
+  spec.density = f.real("density", positive("kg/m^3"), 1000.0);
+  spec.viscosity = f.real("viscosity", non_negative("Pa s"), 1.0e-3);
+  spec.bulk_modulus = f.real("bulk_modulus", positive("Pa"), 2.2e9);
+  spec.reference_pressure = f.real("reference_pressure", any_real("Pa"), 0.0);
+  spec.aperture_floor = f.real("aperture_floor", positive("m"), 1.0e-6);
+  spec.lag_pressure = f.real("lag_pressure", any_real("Pa"), 0.0);
+  spec.initial_pressure = f.real("initial_pressure", any_real("Pa"), 0.0);
+  spec.interval = f.integer("interval", IntRule{1, 1000000}, 1);
+  if (f.ok("lag_pressure") && f.ok("bulk_modulus") && f.ok("reference_pressure") &&
+      !(spec.lag_pressure > spec.reference_pressure - spec.bulk_modulus))
+    f.error("lag_pressure", "a pressure above reference_pressure - bulk_modulus (where the density is zero)");
+  MapReader well = f.section("injection", true);
+  spec.point = well.vec3("point", any_real("m"), std::nullopt);
+  const bool by_rate = well.has("rate"), by_pressure = well.has("pressure");
+  if (by_rate)
+    spec.rate = well.time_function("rate", "m^3/s", std::nullopt);
+  else
+    well.declare("rate");
+  if (by_pressure)
+    spec.pressure = well.time_function("pressure", "Pa", std::nullopt);
+  else
+    well.declare("pressure");
+  if (by_rate == by_pressure)
+    well.error(by_rate ? "pressure" : "rate",
+               "one of rate (m^3/s) and pressure (Pa): the well is driven by one",
+               by_rate ? "both are given" : "neither is given");
+  spec.well_volume = well.real("well_volume", non_negative("m^3"), 0.0);
+  spec.well_compliance = well.real("well_compliance", non_negative("m^3/Pa"), 0.0);
+  well.finish();
+  spec.vent_pressure = f.optional_real("vent_pressure", any_real("Pa"));
+  spec.leak_off = f.real("leak_off", non_negative("m/s^0.5"), 0.0);
+  spec.spurt = f.real("spurt", non_negative("m"), 0.0);
+  f.finish();
+  return spec;
+}
+
+}  // namespace rift

@@ -1,0 +1,102 @@
+#include "systems/fracture_flow/fracture_flow_model.hpp"
+
+#include "engine/scene/output_fields.hpp"
+#include "systems/fracture_flow/fracture_flow_tables.hpp"
+#include "systems/solid_model.hpp"
+
+namespace rift {
+
+namespace {
+// 1 per mesh vertex: on the mesh's outer surface (its boundary and named surface triangles).
+std::vector<uint8_t> boundary_vertices(const TetMesh& mesh) {
+  std::vector<uint8_t> on(mesh.nodes.size(), 0);
+  for (const auto& t : mesh.triangles)
+    for (int32_t v : t) on[size_t(v)] = 1;
+  return on;
+}
+}  // namespace
+
+FractureFlowModel::FractureFlowModel(Store& store, SolidModel& solid, const TetMesh& mesh,
+                                     const FractureFlowSpec& spec)
+    : store_(store), spec_(spec) {
+  solid.accept_crack_fluid_forces();
+  system_ =
+      std::make_unique<FractureFlowSystem>(store, spec, solid.spec().mass_damping, boundary_vertices(mesh));
+}
+
+std::optional<std::string> FractureFlowModel::check_health(const StepContext&) {
+  if (system_->problem().empty()) return std::nullopt;
+  return system_->problem();
+}
+
+void FractureFlowModel::metrics(double, std::vector<std::pair<std::string, double>>& row) {
+  const FractureFlowSystem::Measures m = system_->measure();
+  const Table& books = store_.table(fracture_flow::books_table);
+  auto book = [&](const char* c) { return books.span<const double>(c)[0]; };
+  const double injected_volume = book("injected") / spec_.density;
+  row.emplace_back("flow_well_pressure", m.well_pressure);
+  row.emplace_back("flow_injected_volume", injected_volume);
+  row.emplace_back("flow_fluid_volume", m.fluid_volume);
+  row.emplace_back("flow_crack_volume", m.crack_volume);
+  row.emplace_back("flow_vented_volume", book("vented") / spec_.density);
+  row.emplace_back("flow_leaked_volume", book("leaked") / spec_.density);
+  row.emplace_back("flow_crack_area", m.crack_area);
+  row.emplace_back("flow_wet_area", m.wet_area);
+  row.emplace_back("flow_crack_extent", m.crack_extent);
+  row.emplace_back("flow_front_extent", m.front_extent);
+  // Efficiency: the share of the injected fluid that is still in the crack (the rest leaked or vented).
+  row.emplace_back("flow_efficiency", injected_volume > 0 ? m.crack_volume / injected_volume : 0.0);
+  const double mass = system_->total_mass();
+  row.emplace_back("flow_mass_error",
+                   mass - (book("initial_mass") + book("injected") - book("vented") - book("leaked")));
+  // Energy: the pump's work goes into the rock (fluid_work), viscous dissipation and compression.
+  row.emplace_back("flow_pump_work", book("pump_work"));
+  row.emplace_back("flow_work_on_solid", book("fluid_work"));
+  row.emplace_back("flow_dissipation", book("dissipation"));
+  row.emplace_back("flow_compression_energy", m.compression_energy);
+}
+
+void FractureFlowModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
+  system_->network_geometry(points_, triangles_, rows_, point_aperture_);
+  const Table& rows = store_.table(fracture_flow::vertex_table);
+  const auto pressure = rows.span<const double>("pressure");
+  const auto wetting = rows.span<const double>("wetting_time");
+  const size_t n = rows_.size();
+  point_pressure_.resize(n);
+  point_wetting_.resize(n);
+  for (size_t v = 0; v < n; ++v) {
+    point_pressure_[v] = pressure[size_t(rows_[v])];
+    point_wetting_[v] = wetting[size_t(rows_[v])];
+  }
+  XdmfGrid g{"crack_network",
+             Topology::triangle,
+             points_.data(),
+             n,
+             triangles_.data(),
+             triangles_.size() / 3,
+             uint64_t(triangles_.size() / 3),
+             true,
+             {}};
+  if (wants_field(fields, "pressure"))
+    g.fields.push_back({"pressure", Center::node, 1, ElementType::f64, point_pressure_.data(), n});
+  if (wants_field(fields, "aperture"))
+    g.fields.push_back({"aperture", Center::node, 1, ElementType::f64, point_aperture_.data(), n});
+  if (wants_field(fields, "wetting_time"))
+    g.fields.push_back({"wetting_time", Center::node, 1, ElementType::f64, point_wetting_.data(), n});
+  grids.push_back(std::move(g));
+}
+
+void FractureFlowModel::summarize(nlohmann::json& summary) const {
+  const FractureFlowSystem::Measures m = system_->measure();
+  const Table& books = store_.table(fracture_flow::books_table);
+  auto book = [&](const char* c) { return books.span<const double>(c)[0]; };
+  summary["fracture_flow"] = {
+      {"well_pressure", m.well_pressure},    {"injected_volume", book("injected") / spec_.density},
+      {"crack_volume", m.crack_volume},      {"fluid_volume", m.fluid_volume},
+      {"crack_area", m.crack_area},          {"wet_area", m.wet_area},
+      {"crack_extent", m.crack_extent},      {"front_extent", m.front_extent},
+      {"network_triangles", m.triangles},    {"pump_work", book("pump_work")},
+      {"work_on_solid", book("fluid_work")}, {"dissipation", book("dissipation")}};
+}
+
+}  // namespace rift

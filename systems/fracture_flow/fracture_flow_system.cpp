@@ -1,0 +1,449 @@
+#include "systems/fracture_flow/fracture_flow_system.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/error.hpp"
+#include "kernels/crack_pressure_closure.hpp"
+#include "systems/fracture_flow/fracture_flow_tables.hpp"
+#include "systems/solid_tables.hpp"
+
+namespace rift {
+
+using fracture_flow::books_table;
+using fracture_flow::vertex_table;
+
+FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
+                                       std::vector<uint8_t> boundary_vertex)
+    : store_(store),
+      spec_(spec),
+      eos_{spec.density, spec.reference_pressure, spec.bulk_modulus},
+      mass_damping_(std::move(mass_damping)),
+      flow_(eos_, spec.viscosity, spec.lag_pressure) {
+  // One row per mesh vertex that a joint touches, in vertex order.
+  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  std::vector<int32_t> vertices;
+  for (int32_t n : joint_nodes) vertices.push_back(node_vertex[size_t(n)]);
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  row_of_mesh_vertex_.assign(boundary_vertex.size(), -1);
+  for (size_t r = 0; r < vertices.size(); ++r) row_of_mesh_vertex_[size_t(vertices[r])] = int32_t(r);
+  Table& rows = store_.add_table(vertex_table);
+  rows.add<int32_t>("mesh_vertex", 1);
+  rows.add<double>("pressure", 1);
+  rows.add<double>("mass", 1);
+  rows.add<uint8_t>("role", 1);
+  rows.add<double>("wetting_time", 1);
+  rows.add<double>("exchanged", 1);
+  rows.add<double>("volume", 1);
+  rows.resize(vertices.size());
+  std::copy(vertices.begin(), vertices.end(), rows.span<int32_t>("mesh_vertex").begin());
+  auto pressure = rows.span<double>("pressure");
+  std::fill(pressure.begin(), pressure.end(), spec_.lag_pressure);
+  auto wetting = rows.span<double>("wetting_time");
+  std::fill(wetting.begin(), wetting.end(), -1.0);
+  boundary_row_.resize(vertices.size());
+  for (size_t r = 0; r < vertices.size(); ++r) boundary_row_[r] = boundary_vertex[size_t(vertices[r])];
+  Table& books = store_.add_table(books_table);
+  for (const char* c :
+       {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work", "initial_mass"})
+    books.add<double>(c, 1);
+  books.resize(1);
+  local_of_row_.assign(vertices.size(), -1);
+  entry_of_node_.assign(store_.table(solid::node_table).size(), -1);
+  sync_network();
+  initial_fill();
+}
+
+Access FractureFlowSystem::access() const {
+  using solid::col;
+  const char* N = solid::node_table;
+  std::vector<std::string> reads{col(N, "inv_mass"), col(N, "free"), col(solid::joint_table, "nodes"),
+                                 col(solid::event_table, "joint")};
+  std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "crack_force"),
+                                  col(solid::energy_table, "external_work")};
+  for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})
+    writes.push_back(col(vertex_table, c));
+  for (const char* c : {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work"})
+    writes.push_back(col(books_table, c));
+  return {reads, writes};
+}
+
+// New rows of the fracture log join the network in the log's order (initial cracks first), so the local
+// numbering, and with it every sum, is the same on any thread count and after a restart.
+void FractureFlowSystem::sync_network() {
+  const auto events = store_.table(solid::event_table).span<const int32_t>("joint");
+  if (events.size() == events_seen_) return;
+  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  for (size_t k = events_seen_; k < events.size(); ++k) {
+    const size_t j = size_t(events[k]);
+    joints_.push_back(int32_t(j));
+    for (int c = 0; c < 3; ++c) {
+      const size_t row =
+          size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(joint_nodes[6 * j + size_t(c)])])]);
+      if (local_of_row_[row] < 0) {
+        local_of_row_[row] = int32_t(row_of_local_.size());
+        row_of_local_.push_back(int32_t(row));
+      }
+      triangles_.push_back(local_of_row_[row]);
+    }
+    for (int c = 0; c < 6; ++c) {
+      const int32_t node = joint_nodes[6 * j + size_t(c)];
+      if (entry_of_node_[size_t(node)] < 0) {
+        entry_of_node_[size_t(node)] = int32_t(node_.size());
+        node_.push_back(node);
+        const size_t row = size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(node)])]);
+        node_vertex_.push_back(local_of_row_[row]);
+        felt_.push_back(0.0);  // a new corner has felt no pressure yet
+      }
+      corner_entry_.push_back(entry_of_node_[size_t(node)]);
+    }
+  }
+  events_seen_ = events.size();
+  const size_t nv = row_of_local_.size(), nt = joints_.size(), ne = node_.size();
+  flow_.set_network(triangles_, nv);
+  for (auto* v : {&volume_, &compliance_, &applied_, &source_, &fixed_, &pressure_, &mass_, &wetting_,
+                  &exchanged_, &vertex_area_, &vertex_x_, &weight_})
+    v->assign(nv, 0.0);
+  vertex_x_.assign(3 * nv, 0.0);
+  role_.assign(nv, 0);
+  tri_x_.assign(9 * nt, 0.0);
+  aperture_.assign(3 * nt, 0.0);
+  normal_.assign(3 * nt, 0.0);
+  area_.assign(nt, 0.0);
+  area_vector_.assign(3 * ne, 0.0);
+  now_.assign(ne, 0.0);
+}
+
+// The wet triangles' mid-surfaces from the nodes' current positions; the vertices' volumes (apertures
+// floored), areas and positions; the corner entries' pressure area vectors.
+void FractureFlowSystem::geometry() {
+  const auto x = store_.table(solid::node_table).span<const double>("x");
+  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+  std::fill(volume_.begin(), volume_.end(), 0.0);
+  std::fill(vertex_area_.begin(), vertex_area_.end(), 0.0);
+  std::fill(vertex_x_.begin(), vertex_x_.end(), 0.0);
+  std::fill(weight_.begin(), weight_.end(), 0.0);
+  for (size_t t = 0; t < joints_.size(); ++t) {
+    const double* corner[6];
+    for (int c = 0; c < 6; ++c) corner[c] = &x[3 * size_t(joint_nodes[6 * size_t(joints_[t]) + size_t(c)])];
+    const kernels::CrackTriangle tri = kernels::crack_triangle(corner);
+    area_[t] = tri.area;
+    for (int d = 0; d < 3; ++d) normal_[3 * t + size_t(d)] = tri.normal[d];
+    for (int c = 0; c < 3; ++c) {
+      const size_t v = size_t(triangles_[3 * t + size_t(c)]);
+      const double w = std::max(tri.opening[c], spec_.aperture_floor);
+      aperture_[3 * t + size_t(c)] = w;
+      volume_[v] += tri.area * w / 3.0;
+      vertex_area_[v] += tri.area / 3.0;
+      weight_[v] += 1.0;
+      for (int d = 0; d < 3; ++d) {
+        tri_x_[9 * t + 3 * size_t(c) + size_t(d)] = tri.mid[c][d];
+        vertex_x_[3 * v + size_t(d)] += tri.mid[c][d];
+      }
+    }
+  }
+  for (size_t v = 0; v < weight_.size(); ++v)
+    for (int d = 0; d < 3; ++d) vertex_x_[3 * v + size_t(d)] /= weight_[v];
+  std::fill(area_vector_.begin(), area_vector_.end(), 0.0);
+  kernels::add_pressure_area_vectors(corner_entry_, normal_, area_, area_vector_);
+}
+
+// At t = 0 the initial cracks hold fluid at the initial pressure, and the well is the crack vertex nearest
+// the injection point.
+void FractureFlowSystem::initial_fill() {
+  if (row_of_local_.empty())
+    throw Error(
+        "fracture_flow: no crack to inject into at t = 0; add a starter crack "
+        "(solid.fracture.initial_cracks) "
+        "through fracture_flow.injection.point");
+  geometry();
+  size_t best = 0;
+  double best_d2 = INFINITY;
+  for (size_t v = 0; v < row_of_local_.size(); ++v) {
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d) d2 += std::pow(vertex_x_[3 * v + size_t(d)] - spec_.point[size_t(d)], 2);
+    if (d2 < best_d2) best_d2 = d2, best = v;
+  }
+  // Within an element: no farther than the longest edge of a crack triangle at that vertex.
+  double reach = 0.0;
+  for (size_t t = 0; t < joints_.size(); ++t)
+    for (int c = 0; c < 3; ++c)
+      if (size_t(triangles_[3 * t + size_t(c)]) == best)
+        for (int e = 0; e < 3; ++e) {
+          double d2 = 0.0;
+          for (int d = 0; d < 3; ++d)
+            d2 += std::pow(tri_x_[9 * t + 3 * size_t(e) + size_t(d)] -
+                               tri_x_[9 * t + 3 * size_t((e + 1) % 3) + size_t(d)],
+                           2);
+          reach = std::max(reach, std::sqrt(d2));
+        }
+  if (std::sqrt(best_d2) > reach)
+    throw Error(fmt::format(
+        "fracture_flow.injection.point: [{:.6g}, {:.6g}, {:.6g}] is {:.4g} m from the nearest crack vertex "
+        "([{:.6g}, {:.6g}, {:.6g}]), farther than an element ({:.4g} m); put the well on a starter crack",
+        spec_.point[0], spec_.point[1], spec_.point[2], std::sqrt(best_d2), vertex_x_[3 * best],
+        vertex_x_[3 * best + 1], vertex_x_[3 * best + 2], reach));
+  well_row_ = size_t(row_of_local_[best]);
+  Table& rows = store_.table(vertex_table);
+  auto pressure = rows.span<double>("pressure");
+  auto mass = rows.span<double>("mass");
+  auto role = rows.span<uint8_t>("role");
+  auto wetting = rows.span<double>("wetting_time");
+  auto volume = rows.span<double>("volume");
+  const double p0 = spec_.initial_pressure;
+  double total = 0.0;
+  for (size_t v = 0; v < row_of_local_.size(); ++v) {
+    const size_t r = size_t(row_of_local_[v]);
+    const double vol = volume_[v] + (r == well_row_ ? spec_.well_volume : 0.0);
+    pressure[r] = p0;
+    mass[r] = eos_.density(p0) * vol;
+    role[r] = uint8_t(FlowRole::wet);
+    wetting[r] = 0.0;
+    volume[r] = vol;
+    total += mass[r];
+  }
+  store_.table(books_table).span<double>("initial_mass")[0] = total;
+  // The faces carry the initial pressure from the first step on.
+  auto force = store_.table(solid::node_table).span<double>("crack_force");
+  for (size_t i = 0; i < node_.size(); ++i) {
+    felt_[i] = p0;
+    for (int d = 0; d < 3; ++d)
+      force[3 * size_t(node_[i]) + size_t(d)] = p0 * area_vector_[3 * i + size_t(d)];
+  }
+}
+
+void FractureFlowSystem::restored() {
+  events_seen_ = 0;
+  joints_.clear();
+  triangles_.clear();
+  node_.clear();
+  node_vertex_.clear();
+  corner_entry_.clear();
+  felt_.clear();
+  row_of_local_.clear();
+  std::fill(local_of_row_.begin(), local_of_row_.end(), -1);
+  std::fill(entry_of_node_.begin(), entry_of_node_.end(), -1);
+  sync_network();
+  // Every corner in the checkpoint's network had felt its vertex's pressure (the step before wrote it).
+  const auto pressure = store_.table(vertex_table).span<const double>("pressure");
+  for (size_t i = 0; i < node_.size(); ++i)
+    felt_[i] = pressure[size_t(row_of_local_[size_t(node_vertex_[i])])];
+  geometry();
+}
+
+void FractureFlowSystem::run(const StepContext& ctx) {
+  problem_.clear();
+  sync_network();
+  geometry();
+  Table& rows = store_.table(vertex_table);
+  auto pressure = rows.span<double>("pressure");
+  auto mass = rows.span<double>("mass");
+  auto role = rows.span<uint8_t>("role");
+  auto wetting = rows.span<double>("wetting_time");
+  auto exchanged = rows.span<double>("exchanged");
+  auto volume = rows.span<double>("volume");
+  const size_t nv = row_of_local_.size();
+  const size_t w = size_t(local_of_row_[well_row_]);
+  for (size_t v = 0; v < nv; ++v) {
+    const size_t r = size_t(row_of_local_[v]);
+    pressure_[v] = pressure[r];
+    mass_[v] = mass[r];
+    role_[v] = role[r];
+    wetting_[v] = wetting[r];
+    exchanged_[v] = 0.0;
+    if (spec_.vent_pressure && boundary_row_[r] && r != well_row_) {
+      role_[v] = uint8_t(FlowRole::fixed);
+      fixed_[v] = *spec_.vent_pressure;
+    }
+  }
+  const double t_end = ctx.time + ctx.dt;
+  if (spec_.pressure) {
+    role_[w] = uint8_t(FlowRole::fixed);
+    fixed_[w] = (*spec_.pressure)(t_end);
+  }
+
+  // The closure's compliance, and the pressure the predicted volumes already felt (the compliance-weighted
+  // mean of the corners': a corner that joined the network this step felt none).
+  const Table& nodes = store_.table(solid::node_table);
+  const auto inv_mass = nodes.span<const double>("inv_mass");
+  const auto free = nodes.span<const uint8_t>("free");
+  const double damping_factor = 1.0 / (1.0 + 0.5 * mass_damping_(ctx.time) * ctx.dt);
+  const kernels::CrackClosureNodes closure{node_, node_vertex_, area_vector_, inv_mass, free};
+  std::fill(compliance_.begin(), compliance_.end(), 0.0);
+  kernels::add_closure_compliance(closure, ctx.dt, damping_factor, compliance_);
+  std::fill(applied_.begin(), applied_.end(), 0.0);
+  for (size_t i = 0; i < node_.size(); ++i) {
+    const size_t n = size_t(node_[i]);
+    double a2 = 0.0;
+    for (size_t d = 0; d < 3; ++d)
+      if (free[3 * n + d]) a2 += area_vector_[3 * i + d] * area_vector_[3 * i + d];
+    applied_[size_t(node_vertex_[i])] += ctx.dt * ctx.dt * damping_factor * a2 * inv_mass[n] * felt_[i];
+  }
+  for (size_t v = 0; v < nv; ++v)
+    applied_[v] = compliance_[v] > 0.0 ? applied_[v] / compliance_[v] : pressure_[v];
+  // The well's own storage: V_w(p) = well_volume + well_compliance (p - initial_pressure).
+  volume_[w] += spec_.well_volume + spec_.well_compliance * (applied_[w] - spec_.initial_pressure);
+  compliance_[w] += spec_.well_compliance;
+
+  Table& books = store_.table(books_table);
+  double injected = 0.0, leaked = 0.0;
+  if (spec_.rate) {
+    injected = ctx.dt * spec_.density * (*spec_.rate)(ctx.time + 0.5 * ctx.dt);
+    mass_[w] += injected;
+  }
+  if (spec_.leak_off > 0.0 || spec_.spurt > 0.0)
+    for (size_t v = 0; v < nv; ++v) {
+      if (wetting_[v] < 0.0 || FlowRole(role_[v]) == FlowRole::fixed) continue;
+      // Carter: each of the two faces loses C_L / sqrt(t - t_wet) per unit area, and the spurt once, in
+      // the step after it wets; never more than the vertex holds.
+      const double faces = 2.0 * vertex_area_[v];
+      double lost = faces * 2.0 * spec_.leak_off *
+                    (std::sqrt(t_end - wetting_[v]) - std::sqrt(std::max(ctx.time - wetting_[v], 0.0)));
+      if (wetting_[v] > ctx.time - ctx.dt && wetting_[v] <= ctx.time) lost += faces * spec_.spurt;
+      const double dm = std::min(eos_.density(pressure_[v]) * lost, mass_[v]);
+      mass_[v] -= dm;
+      leaked += dm;
+    }
+
+  std::fill(source_.begin(), source_.end(), 0.0);
+  const int64_t interval = spec_.interval;
+  const bool solve = (ctx.step + 1) % interval == 0;
+  const NetworkFlowStepInput in{solve ? double(interval) * ctx.dt : ctx.dt,
+                                t_end,
+                                tri_x_,
+                                aperture_,
+                                volume_,
+                                compliance_,
+                                applied_,
+                                source_,
+                                fixed_};
+  NetworkFlowState state{pressure_, mass_, role_, wetting_, exchanged_};
+  NetworkFlowBooks step_books;
+  const std::vector<double> old_pressure(pressure.begin(), pressure.end());
+  std::string problem = solve ? flow_.step(in, state, step_books) : flow_.local_step(in, state);
+  if (!problem.empty()) {
+    problem_ = fmt::format("fracture_flow at t = {:.6g} s (step {}): {}", t_end, ctx.step, problem);
+    return;
+  }
+
+  // The corners move for the pressure change and carry the new pressure into the next node pass.
+  for (size_t i = 0; i < node_.size(); ++i) now_[i] = pressure_[size_t(node_vertex_[i])];
+  Table& solid_nodes = store_.table(solid::node_table);
+  const double correction_work =
+      kernels::apply_closure(closure, ctx.dt, damping_factor, felt_, now_, solid_nodes.span<double>("x"),
+                             solid_nodes.span<double>("v"));
+  store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
+  auto force = solid_nodes.span<double>("crack_force");
+  for (size_t i = 0; i < node_.size(); ++i) {
+    felt_[i] = now_[i];
+    for (size_t d = 0; d < 3; ++d) force[3 * size_t(node_[i]) + d] = now_[i] * area_vector_[3 * i + d];
+  }
+
+  double vented = 0.0, fluid_work = 0.0, total = 0.0;
+  for (size_t v = 0; v < nv; ++v) {
+    const size_t r = size_t(row_of_local_[v]);
+    const double new_volume = volume_[v] + compliance_[v] * (pressure_[v] - applied_[v]);
+    fluid_work += 0.5 * (old_pressure[r] + pressure_[v]) * (new_volume - volume[r]);
+    if (v == w)
+      injected += exchanged_[v];
+    else
+      vented -= exchanged_[v];
+    pressure[r] = pressure_[v];
+    mass[r] = mass_[v];
+    role[r] = role_[v];
+    wetting[r] = wetting_[v];
+    exchanged[r] += exchanged_[v];
+    volume[r] = new_volume;
+    total += mass_[v];
+  }
+  const double well_pressure = 0.5 * (old_pressure[well_row_] + pressure_[w]);
+  books.span<double>("injected")[0] += injected;
+  books.span<double>("vented")[0] += vented;
+  books.span<double>("leaked")[0] += leaked;
+  books.span<double>("dissipation")[0] += step_books.dissipation;
+  books.span<double>("fluid_work")[0] += fluid_work;
+  // The pump takes the injected mass from the reference state into the well: it compresses it to the
+  // well's pressure (e(p) per unit mass, the compression energy it brings in) and displaces it there,
+  // where it takes the volume m / rho(p).
+  books.span<double>("pump_work")[0] +=
+      injected * (well_pressure / eos_.density(well_pressure) + specific_compression_energy(well_pressure));
+  // The mass books: what the network holds is what it started with, plus what came in, less what left.
+  const double in_total = books.span<double>("injected")[0], initial = books.span<double>("initial_mass")[0];
+  const double expected =
+      initial + in_total - books.span<double>("vented")[0] - books.span<double>("leaked")[0];
+  const double scale = std::max({std::abs(total), std::abs(initial), std::abs(in_total)});
+  if (std::abs(total - expected) > 1e-12 * scale)
+    problem_ = fmt::format(
+        "fracture_flow at t = {:.6g} s (step {}): the fluid's mass books do not close: the network holds "
+        "{:.12g} kg "
+        "but started with {:.12g}, took in {:.12g}, vented {:.12g} and leaked {:.12g} kg (relative error "
+        "{:.3g}, allowed 1e-12). This is a defect of the flow step; please report it with the scene.",
+        t_end, ctx.step, total, initial, in_total, books.span<double>("vented")[0],
+        books.span<double>("leaked")[0], std::abs(total - expected) / scale);
+}
+
+// The work that compressed a unit mass from rho0 to rho(p), the integral of p d(1 / rho) along the
+// equation of state: (K_f / rho0) [ln(1 + x) + 1 / (1 + x) - 1] + p0 x / (rho0 (1 + x)), x = (p - p0) / K_f.
+double FractureFlowSystem::specific_compression_energy(double p) const {
+  const double x = (p - spec_.reference_pressure) / spec_.bulk_modulus;
+  return (spec_.bulk_modulus * (std::log1p(x) + 1.0 / (1.0 + x) - 1.0) +
+          spec_.reference_pressure * x / (1.0 + x)) /
+         spec_.density;
+}
+
+double FractureFlowSystem::total_mass() const {
+  const auto mass = store_.table(vertex_table).span<const double>("mass");
+  double total = 0.0;
+  for (int32_t r : row_of_local_) total += mass[size_t(r)];
+  return total;
+}
+
+FractureFlowSystem::Measures FractureFlowSystem::measure() const {
+  Measures m;
+  const Table& rows = store_.table(vertex_table);
+  const auto pressure = rows.span<const double>("pressure");
+  const auto mass = rows.span<const double>("mass");
+  const auto role = rows.span<const uint8_t>("role");
+  const auto volume = rows.span<const double>("volume");
+  m.well_pressure = pressure[well_row_];
+  const size_t w = size_t(local_of_row_[well_row_]);
+  for (size_t v = 0; v < row_of_local_.size(); ++v) {
+    const size_t r = size_t(row_of_local_[v]);
+    m.crack_volume += volume[r];
+    m.fluid_volume += mass[r] / spec_.density;
+    m.compression_energy += mass[r] * specific_compression_energy(pressure[r]);
+    double d2 = 0.0;
+    for (int d = 0; d < 3; ++d)
+      d2 += std::pow(vertex_x_[3 * v + size_t(d)] - vertex_x_[3 * w + size_t(d)], 2);
+    m.crack_extent = std::max(m.crack_extent, std::sqrt(d2));
+    if (FlowRole(role[r]) == FlowRole::wet) {
+      ++m.wet_vertices;
+      m.wet_area += vertex_area_[v];
+      m.front_extent = std::max(m.front_extent, std::sqrt(d2));
+    }
+  }
+  // The crack's own volume: without the well's storage.
+  m.crack_volume -= spec_.well_volume + spec_.well_compliance * (m.well_pressure - spec_.initial_pressure);
+  for (double a : area_) m.crack_area += a;
+  m.triangles = joints_.size();
+  return m;
+}
+
+void FractureFlowSystem::network_geometry(std::vector<double>& points, std::vector<int32_t>& triangles,
+                                          std::vector<int32_t>& rows, std::vector<double>& aperture) const {
+  points = vertex_x_;
+  triangles = triangles_;
+  rows = row_of_local_;
+  aperture.assign(row_of_local_.size(), 0.0);
+  for (size_t t = 0; t < area_.size(); ++t)
+    for (size_t c = 0; c < 3; ++c)
+      aperture[size_t(triangles_[3 * t + c])] += area_[t] / 3.0 * aperture_[3 * t + c];
+  for (size_t v = 0; v < aperture.size(); ++v) aperture[v] /= vertex_area_[v];
+}
+
+}  // namespace rift

@@ -1,0 +1,86 @@
+#pragma once
+// The fluid in the cracks, one step (docs/hydraulic-fracture.md). Runs after the node pass:
+//   1. the network takes in the joints broken since the last step (the fracture log's new rows);
+//   2. from the predicted positions: each wet triangle's mid-surface, opening and area, the vertices'
+//      volumes, the corner nodes' pressure area vectors and the closure's compliance;
+//   3. the flow step (every `interval` steps; in between each vertex keeps its mass and takes the pressure
+//      of its own volume), with the well's source or pressure and the vents;
+//   4. the closure moves the wet corner nodes for the pressure change, and writes each such node's force
+//      p a into solid_node.crack_force, which the next step's node pass gathers as an external force.
+// Serial: its cost is the network's, not the mesh's, and its sums do not depend on the thread count.
+#include <cstdint>
+#include <vector>
+
+#include "engine/core/table.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/schedule/system.hpp"
+#include "kernels/fracture_flow.hpp"
+#include "systems/fracture_flow/network_flow.hpp"
+
+namespace rift {
+
+class FractureFlowSystem : public System {
+ public:
+  // mass_damping: the solid's (its factor enters the closure). Throws rift::Error (naming the scene key)
+  // when the well's point is not at a crack vertex.
+  FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
+                     std::vector<uint8_t> boundary_vertex);
+  std::string name() const override { return "fracture_flow"; }
+  Access access() const override;
+  void run(const StepContext& ctx) override;
+
+  // After a checkpoint was read: the network is rebuilt from the fracture log.
+  void restored();
+  // The diagnosis of the last step ("" when it went well): a failed solve or broken mass books.
+  const std::string& problem() const { return problem_; }
+
+  struct Measures {
+    double well_pressure = 0, crack_volume = 0, fluid_volume = 0, wet_area = 0, crack_area = 0;
+    double crack_extent = 0, front_extent = 0;  // largest distance from the well of a network / wet vertex
+    double compression_energy = 0;              // the work that compressed the fluid from rho0
+    size_t triangles = 0, wet_vertices = 0;
+  };
+  Measures measure() const;
+  // The network's mid-surface for output: points (3 per network vertex, the mean of its triangles'
+  // mid-surface corners), triangles on them, per point its table row and its mean hydraulic aperture
+  // (the area-weighted mean of its corners').
+  void network_geometry(std::vector<double>& points, std::vector<int32_t>& triangles,
+                        std::vector<int32_t>& rows, std::vector<double>& aperture) const;
+  size_t well_row() const { return well_row_; }
+  double total_mass() const;
+  double specific_compression_energy(double p) const;  // [J/kg]
+
+ private:
+  void sync_network();
+  void geometry();
+  void initial_fill();
+
+  Store& store_;
+  FractureFlowSpec spec_;
+  kernels::FluidEos eos_;
+  TimeFunction mass_damping_;
+  std::vector<uint8_t> boundary_row_;  // 1 per vertex row: on the solid's outer surface
+  NetworkFlow flow_;
+  std::vector<int32_t> row_of_mesh_vertex_;  // -1 where no joint touches the vertex
+  size_t well_row_ = 0;
+  // The network: triangles (broken joints, in the fracture log's order) on local vertex ids.
+  size_t events_seen_ = 0;
+  std::vector<int32_t> joints_;        // 1 per triangle
+  std::vector<int32_t> local_of_row_;  // -1 outside the network
+  std::vector<int32_t> row_of_local_;
+  std::vector<int32_t> triangles_;      // 3 per triangle, local ids
+  std::vector<int32_t> node_;           // the wet corner nodes (entries), each once
+  std::vector<int32_t> node_vertex_;    // local vertex of each entry
+  std::vector<int32_t> corner_entry_;   // 6 per triangle
+  std::vector<int32_t> entry_of_node_;  // -1 for a node on no wet triangle
+  std::vector<double> felt_;            // per entry: the pressure its node felt in the node pass
+  // Per step, sized with the network.
+  std::vector<double> tri_x_, aperture_, normal_, area_, volume_, compliance_, applied_, source_, fixed_;
+  std::vector<double> area_vector_, now_;
+  std::vector<double> vertex_area_, vertex_x_, weight_;  // per local vertex: area share, position
+  std::vector<double> pressure_, mass_, wetting_, exchanged_;
+  std::vector<uint8_t> role_;
+  std::string problem_;
+};
+
+}  // namespace rift

@@ -1,0 +1,127 @@
+// The fluid in the cracks (fracture_flow) against closed forms that nobody here chose.
+//
+// Sneddon by injection (scenes/validation/sneddon_injection.yaml): the plane-strain Griffith crack of
+// test_sneddon.cpp, filled by injecting the volume V it holds at 1 MPa, V = 2 pi p a^2 / E'. With no
+// viscosity the crack has one pressure, and the injected mass m = rho0 V takes the volume V / (1 + p / K_f)
+// in the crack, so p (1 + p / K_f) = E' V / (2 pi a^2): 0.99955 MPa for water, 0.91608 MPa for K_f = 1e7 Pa
+// (where the stiff answer would be 9 % off). The centre opening is Sneddon's w0 = 4 p a / E' at that p.
+// The bound 5 % is the prescribed-pressure test's (test_sneddon.cpp): the linear tets' error at the tip,
+// the joints' compliance and the finite plate; measured at 8 cells per half-length: p -1.5 % / -1.4 %, w0
+// +1.2 % / +1.3 % (water / K_f = 1e7 Pa).
+// The books: fluid mass to 1e-12 of what was injected at every step; the pump's work equals the work on
+// the rock plus the compression energy (no viscosity: no dissipation) to 1e-4 (measured 1.5e-6: the
+// trapezoid rule of p dV over the steps).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/core/state_hash.hpp"
+#include "systems/fracture_flow/fracture_flow_model.hpp"
+#include "tests/unit/test_io_temp_dir.hpp"
+#include "tests/unit/test_run_support.hpp"
+#include "tests/validation/validation_support.hpp"
+
+namespace rift {
+namespace {
+
+using validation::run_watching;
+using validation::validation_scene;
+
+constexpr double kE = 1.0e10, kNu = 0.25, kA = 1.0;
+const double kEp = kE / (1.0 - kNu * kNu);
+constexpr double kInjected = 3.68156e-5 * 16.0;  // m^3 per metre of crack: the half model's x 2 / 0.125 m
+
+FractureFlowModel& flow_of(Simulation& sim) {
+  for (auto& m : sim.world().models)
+    if (auto* f = dynamic_cast<FractureFlowModel*>(m.get())) return *f;
+  throw std::runtime_error("the scene has no fracture_flow");
+}
+
+double metric(const std::vector<std::pair<std::string, double>>& row, const std::string& name) {
+  for (const auto& [n, v] : row)
+    if (n == name) return v;
+  ADD_FAILURE() << "no metric " << name;
+  return 0.0;
+}
+
+struct InjectionResult {
+  double pressure = 0, centre_aperture = 0, worst_mass_error = 0, pump = 0, work = 0, dissipation = 0,
+         compression = 0;
+};
+
+InjectionResult run_injection(const std::vector<std::string>& overrides) {
+  InjectionResult r;
+  const Scene scene = validation_scene("sneddon_injection.yaml", overrides);
+  run_watching(scene, 2, [&](Simulation& sim) {
+    std::vector<std::pair<std::string, double>> row;
+    flow_of(sim).metrics(sim.time(), row);
+    const double injected = metric(row, "flow_injected_volume");
+    if (injected > 0)
+      r.worst_mass_error =
+          std::max(r.worst_mass_error, std::abs(metric(row, "flow_mass_error")) / (1000.0 * injected));
+    if (sim.step() != sim.total_steps()) return;
+    r.pressure = metric(row, "flow_well_pressure");
+    r.pump = metric(row, "flow_pump_work");
+    r.work = metric(row, "flow_work_on_solid");
+    r.dissipation = metric(row, "flow_dissipation");
+    r.compression = metric(row, "flow_compression_energy");
+    std::vector<XdmfGrid> grids;
+    flow_of(sim).output_grids(grids, {"aperture"});
+    // The crack's centre: the network point nearest x = 0 (the symmetry plane) at mid-thickness.
+    const XdmfGrid& g = grids.at(0);
+    double best = INFINITY;
+    for (size_t p = 0; p < g.point_count; ++p) {
+      const double d = std::abs(g.points[3 * p]) + std::abs(g.points[3 * p + 2] - 0.0625);
+      if (d < best) {
+        best = d;
+        r.centre_aperture = static_cast<const double*>(g.fields.at(0).data)[p];
+      }
+    }
+  });
+  return r;
+}
+
+// p (1 + p / K_f) = E' V / (2 pi a^2), solved for p.
+double sneddon_pressure(double bulk_modulus) {
+  const double stiff = kEp * kInjected / (2.0 * M_PI * kA * kA);
+  return 2.0 * stiff / (1.0 + std::sqrt(1.0 + 4.0 * stiff / bulk_modulus));
+}
+
+TEST(HydraulicFracture, SneddonByInjectionStiffAndSoftFluid) {
+  for (double bulk : {2.2e9, 1.0e7}) {
+    const InjectionResult r = run_injection({"fracture_flow.bulk_modulus=" + std::to_string(bulk)});
+    const double p = sneddon_pressure(bulk);
+    SCOPED_TRACE("K_f = " + std::to_string(bulk) + ", Sneddon's p = " + std::to_string(p));
+    EXPECT_NEAR(r.pressure / p, 1.0, 0.05) << r.pressure;
+    EXPECT_NEAR(r.centre_aperture / (4.0 * p * kA / kEp), 1.0, 0.05) << r.centre_aperture;
+    EXPECT_LT(r.worst_mass_error, 1e-12);
+    EXPECT_EQ(r.dissipation, 0.0);
+    EXPECT_NEAR(r.pump, r.work + r.dissipation + r.compression, 1e-4 * r.pump);
+  }
+  // The soft fluid's answer differs visibly from the stiff one, and the run follows it.
+  EXPECT_LT(sneddon_pressure(1.0e7) / sneddon_pressure(2.2e9), 0.93);
+}
+
+// A viscous fluid in the same crack, on a coarser mesh and a shorter run: the same bits on 1, 2 and 4
+// threads, and a run stopped half-way and restarted from its checkpoint ends on the same bits.
+TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {
+  const Scene scene = validation_scene(
+      "sneddon_injection.yaml", {"mesh.generate.cells=[40, 80, 1]", "solid.fracture.box_min=[-1, -0.225, -1]",
+                                 "solid.fracture.box_max=[1.25, 0.225, 1]", "fracture_flow.viscosity=1e-3",
+                                 "time.end=0.004", "checkpoint.every_steps=200", "output.interval=0.001"});
+  std::string reference;
+  for (int threads : {1, 2, 4}) {
+    test::TempDir dir;
+    const RunResult r = test::run_scene(scene, dir.path(), threads);
+    ASSERT_TRUE(r.completed) << threads;
+    if (threads == 1) reference = hex64(r.state_hash);
+    EXPECT_EQ(hex64(r.state_hash), reference) << threads << " threads";
+  }
+  test::TempDir dir;
+  const auto resumed = test::stop_and_resume(scene, dir.path(), 2, 400);
+  ASSERT_TRUE(resumed.rest.completed);
+  EXPECT_EQ(hex64(resumed.rest.state_hash), reference);
+}
+
+}  // namespace
+}  // namespace rift

@@ -13,6 +13,7 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f) {
   spec.lag_pressure = f.real("lag_pressure", any_real("Pa"), 0.0);
   spec.initial_pressure = f.real("initial_pressure", any_real("Pa"), 0.0);
   spec.interval = f.integer("interval", IntRule{1, 1000000}, 1);
+  spec.wet_damage = f.real("wet_damage", RealRule{"", 0.0, 1.0, true, false}, 1.0);
   if (f.ok("lag_pressure") && f.ok("bulk_modulus") && f.ok("reference_pressure") &&
       !(spec.lag_pressure > spec.reference_pressure - spec.bulk_modulus))
     f.error("lag_pressure", "a pressure above reference_pressure - bulk_modulus (where the density is zero)");

@@ -278,6 +278,9 @@ struct FractureFlowSpec {
   double lag_pressure = 0.0;        // [Pa]: held by crack regions the fluid has not reached
   double initial_pressure = 0.0;    // [Pa]: the fluid filling the initial cracks at t = 0
   int64_t interval = 1;             // solid steps per flow solve (in between: each vertex on its own)
+  // A joint joins the network when its damage (the largest D_max of its points) reaches this: 1, only
+  // broken joints; below 1, the fluid also enters the process zone ahead of the crack.
+  double wet_damage = 1.0;
   // The well: the crack vertex nearest `point` (within an element of it), given extra storage.
   std::array<double, 3> point{};
   std::optional<TimeFunction> rate;      // injected volume rate at rho0 [m^3/s] (one of rate, pressure)

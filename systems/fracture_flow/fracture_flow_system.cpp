@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "engine/core/error.hpp"
 #include "kernels/crack_pressure_closure.hpp"
@@ -52,6 +54,11 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
        {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work", "initial_mass"})
     books.add<double>(c, 1);
   books.resize(1);
+  Table& joined = store_.add_table(fracture_flow::joint_table);
+  joined.add<int64_t>("joined", 1);
+  joined.resize(store_.table(solid::joint_table).size());
+  auto order = joined.span<int64_t>("joined");
+  std::fill(order.begin(), order.end(), -1);
   local_of_row_.assign(vertices.size(), -1);
   entry_of_node_.assign(store_.table(solid::node_table).size(), -1);
   sync_network();
@@ -63,51 +70,79 @@ Access FractureFlowSystem::access() const {
   const char* N = solid::node_table;
   std::vector<std::string> reads{col(N, "inv_mass"), col(N, "free"), col(solid::joint_table, "nodes"),
                                  col(solid::event_table, "joint")};
+  if (spec_.wet_damage < 1.0) reads.push_back(col(solid::joint_table, "d_max"));
   std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "crack_force"),
                                   col(solid::energy_table, "external_work")};
   for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})
     writes.push_back(col(vertex_table, c));
+  writes.push_back(col(fracture_flow::joint_table, "joined"));
   for (const char* c : {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work"})
     writes.push_back(col(books_table, c));
   return {reads, writes};
 }
 
-// New rows of the fracture log join the network in the log's order (initial cracks first), so the local
-// numbering, and with it every sum, is the same on any thread count and after a restart.
+// Joints join the network in a fixed order: each step the fracture log's new rows (initial cracks first),
+// then, with wet_damage below 1, the joints whose damage reached it, by joint index. The order is
+// recorded (fracture_flow_joint.joined), so the local numbering, and with it every sum, is the same on any
+// thread count and after a restart.
 void FractureFlowSystem::sync_network() {
+  auto joined = store_.table(fracture_flow::joint_table).span<int64_t>("joined");
+  const size_t before = joints_.size();
   const auto events = store_.table(solid::event_table).span<const int32_t>("joint");
-  if (events.size() == events_seen_) return;
-  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
-  for (size_t k = events_seen_; k < events.size(); ++k) {
-    const size_t j = size_t(events[k]);
-    joints_.push_back(int32_t(j));
-    for (int c = 0; c < 3; ++c) {
-      const size_t row =
-          size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(joint_nodes[6 * j + size_t(c)])])]);
-      if (local_of_row_[row] < 0) {
-        local_of_row_[row] = int32_t(row_of_local_.size());
-        row_of_local_.push_back(int32_t(row));
-      }
-      triangles_.push_back(local_of_row_[row]);
-    }
-    for (int c = 0; c < 6; ++c) {
-      const int32_t node = joint_nodes[6 * j + size_t(c)];
-      if (entry_of_node_[size_t(node)] < 0) {
-        entry_of_node_[size_t(node)] = int32_t(node_.size());
-        node_.push_back(node);
-        const size_t row = size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(node)])]);
-        node_vertex_.push_back(local_of_row_[row]);
-        felt_.push_back(0.0);  // a new corner has felt no pressure yet
-      }
-      corner_entry_.push_back(entry_of_node_[size_t(node)]);
+  for (size_t k = events_seen_; k < events.size(); ++k)
+    if (joined[size_t(events[k])] < 0) join(size_t(events[k]));
+  events_seen_ = events.size();
+  if (spec_.wet_damage < 1.0) {
+    const Table& joints = store_.table(solid::joint_table);
+    const auto d_max = joints.span<const double>("d_max");
+    const size_t points = d_max.size() / std::max<size_t>(joints.size(), 1);
+    for (size_t j = 0; j < joints.size(); ++j) {
+      if (joined[j] >= 0) continue;
+      const double* d = &d_max[points * j];
+      if (*std::max_element(d, d + points) >= spec_.wet_damage) join(j);
     }
   }
-  events_seen_ = events.size();
+  if (joints_.size() != before) network_changed();
+}
+
+void FractureFlowSystem::join(size_t j) {
+  auto joined = store_.table(fracture_flow::joint_table).span<int64_t>("joined");
+  joined[j] = int64_t(joints_.size());
+  add_triangle(j);
+}
+
+void FractureFlowSystem::add_triangle(size_t j) {
+  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  joints_.push_back(int32_t(j));
+  for (int c = 0; c < 3; ++c) {
+    const size_t row =
+        size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(joint_nodes[6 * j + size_t(c)])])]);
+    if (local_of_row_[row] < 0) {
+      local_of_row_[row] = int32_t(row_of_local_.size());
+      row_of_local_.push_back(int32_t(row));
+    }
+    triangles_.push_back(local_of_row_[row]);
+  }
+  for (int c = 0; c < 6; ++c) {
+    const int32_t node = joint_nodes[6 * j + size_t(c)];
+    if (entry_of_node_[size_t(node)] < 0) {
+      entry_of_node_[size_t(node)] = int32_t(node_.size());
+      node_.push_back(node);
+      const size_t row = size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(node)])]);
+      node_vertex_.push_back(local_of_row_[row]);
+      felt_.push_back(0.0);  // a new corner has felt no pressure yet
+    }
+    corner_entry_.push_back(entry_of_node_[size_t(node)]);
+  }
+}
+
+// The flow's pattern and the per-step arrays follow the network's size.
+void FractureFlowSystem::network_changed() {
   const size_t nv = row_of_local_.size(), nt = joints_.size(), ne = node_.size();
   flow_.set_network(triangles_, nv);
   for (auto* v : {&volume_, &compliance_, &applied_, &source_, &fixed_, &pressure_, &mass_, &wetting_,
-                  &exchanged_, &vertex_area_, &vertex_x_, &weight_})
+                  &exchanged_, &vertex_area_, &weight_})
     v->assign(nv, 0.0);
   vertex_x_.assign(3 * nv, 0.0);
   role_.assign(nv, 0);
@@ -218,7 +253,6 @@ void FractureFlowSystem::initial_fill() {
 }
 
 void FractureFlowSystem::restored() {
-  events_seen_ = 0;
   joints_.clear();
   triangles_.clear();
   node_.clear();
@@ -228,7 +262,15 @@ void FractureFlowSystem::restored() {
   row_of_local_.clear();
   std::fill(local_of_row_.begin(), local_of_row_.end(), -1);
   std::fill(entry_of_node_.begin(), entry_of_node_.end(), -1);
-  sync_network();
+  // The checkpoint's network, in the order it was built.
+  const auto joined = store_.table(fracture_flow::joint_table).span<const int64_t>("joined");
+  std::vector<std::pair<int64_t, size_t>> order;
+  for (size_t j = 0; j < joined.size(); ++j)
+    if (joined[j] >= 0) order.emplace_back(joined[j], j);
+  std::sort(order.begin(), order.end());
+  for (const auto& [k, j] : order) add_triangle(j);
+  events_seen_ = store_.table(solid::event_table).size();
+  network_changed();
   // Every corner in the checkpoint's network had felt its vertex's pressure (the step before wrote it).
   const auto pressure = store_.table(vertex_table).span<const double>("pressure");
   for (size_t i = 0; i < node_.size(); ++i)
@@ -238,8 +280,15 @@ void FractureFlowSystem::restored() {
 
 void FractureFlowSystem::run(const StepContext& ctx) {
   problem_.clear();
+  const size_t old_triangles = joints_.size();
   sync_network();
   geometry();
+  // The crack space that joined with the new triangles was opened by the rock, not by the fluid: it is
+  // not part of the fluid's work.
+  joining_.assign(row_of_local_.size(), 0.0);
+  for (size_t t = old_triangles; t < joints_.size(); ++t)
+    for (size_t c = 0; c < 3; ++c)
+      joining_[size_t(triangles_[3 * t + c])] += area_[t] * aperture_[3 * t + c] / 3.0;
   Table& rows = store_.table(vertex_table);
   auto pressure = rows.span<double>("pressure");
   auto mass = rows.span<double>("mass");
@@ -338,6 +387,16 @@ void FractureFlowSystem::run(const StepContext& ctx) {
       kernels::apply_closure(closure, ctx.dt, damping_factor, felt_, now_, solid_nodes.span<double>("x"),
                              solid_nodes.span<double>("v"));
   store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
+  if (std::getenv("RIFT_FLOW_DEBUG") && ctx.step > 16430) {
+    double maxdp = 0, sv = 0, sc = 0;
+    for (size_t i = 0; i < node_.size(); ++i) maxdp = std::max(maxdp, std::abs(now_[i] - felt_[i]));
+    for (size_t v = 0; v < nv; ++v) {
+      sv += volume_[v];
+      sc += compliance_[v];
+    }
+    std::fprintf(stderr, "step %ld tri %zu p_w %.6g maxdp %.4g Vpred %.6g C %.4g Wcorr %.6g solve %d\n",
+                 (long)ctx.step, joints_.size(), pressure_[w], maxdp, sv, sc, correction_work, int(solve));
+  }
   auto force = solid_nodes.span<double>("crack_force");
   for (size_t i = 0; i < node_.size(); ++i) {
     felt_[i] = now_[i];
@@ -348,7 +407,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   for (size_t v = 0; v < nv; ++v) {
     const size_t r = size_t(row_of_local_[v]);
     const double new_volume = volume_[v] + compliance_[v] * (pressure_[v] - applied_[v]);
-    fluid_work += 0.5 * (old_pressure[r] + pressure_[v]) * (new_volume - volume[r]);
+    fluid_work += 0.5 * (old_pressure[r] + pressure_[v]) * (new_volume - volume[r] - joining_[v]);
     if (v == w)
       injected += exchanged_[v];
     else

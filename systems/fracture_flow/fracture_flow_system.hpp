@@ -52,6 +52,9 @@ class FractureFlowSystem : public System {
 
  private:
   void sync_network();
+  void join(size_t joint);
+  void add_triangle(size_t joint);
+  void network_changed();
   void geometry();
   void initial_fill();
 
@@ -63,7 +66,7 @@ class FractureFlowSystem : public System {
   NetworkFlow flow_;
   std::vector<int32_t> row_of_mesh_vertex_;  // -1 where no joint touches the vertex
   size_t well_row_ = 0;
-  // The network: triangles (broken joints, in the fracture log's order) on local vertex ids.
+  // The network: triangles (joints, in the order they joined) on local vertex ids.
   size_t events_seen_ = 0;
   std::vector<int32_t> joints_;        // 1 per triangle
   std::vector<int32_t> local_of_row_;  // -1 outside the network
@@ -76,7 +79,7 @@ class FractureFlowSystem : public System {
   std::vector<double> felt_;            // per entry: the pressure its node felt in the node pass
   // Per step, sized with the network.
   std::vector<double> tri_x_, aperture_, normal_, area_, volume_, compliance_, applied_, source_, fixed_;
-  std::vector<double> area_vector_, now_;
+  std::vector<double> area_vector_, now_, joining_;
   std::vector<double> vertex_area_, vertex_x_, weight_;  // per local vertex: area share, position
   std::vector<double> pressure_, mass_, wetting_, exchanged_;
   std::vector<uint8_t> role_;

@@ -250,23 +250,35 @@ std::string NetworkFlow::zero_viscosity_step(const NetworkFlowStepInput& in, Net
     comp[r] += in.compliance[v];
     if (FlowRole(s.role[v]) == FlowRole::fixed && fixed_vertex[r] < 0) fixed_vertex[r] = int64_t(v);
   }
+  // fill[r]: the share of its volume at the lag pressure that a sealed part's fluid fills when it cannot
+  // fill it all (new crack space opened faster than the fluid, incompressible as it nearly is, can follow):
+  // the part then holds the lag pressure, like the lag ahead of a viscous front. 1: full.
+  std::vector<double>& fill = v0;  // v0 is not needed once the pressures are known
   for (size_t r = 0; r < vertices_; ++r) {
     if (size_t(find(int32_t(r))) != r) continue;
     new_pressure_[r] = fixed_vertex[r] >= 0 ? in.fixed_pressure[size_t(fixed_vertex[r])]
                                             : kernels::pressure_of_mass(eos_, mass[r], v0[r], comp[r], 0.0);
+    const double room = eos_.density(lag_pressure_) * (v0[r] + comp[r] * lag_pressure_);
+    fill[r] = 1.0;
+    if (fixed_vertex[r] < 0 && new_pressure_[r] < lag_pressure_) {
+      new_pressure_[r] = lag_pressure_;
+      fill[r] = mass[r] / room;
+    }
     if (!std::isfinite(new_pressure_[r]))
       return fmt::format("the fracture flow's pressure of the part holding vertex {} is not finite", r);
   }
-  // Every vertex full at its part's pressure. A sealed part's total is unchanged up to rounding; a part
-  // with a fixed vertex books what it gained or lost as that vertex's exchange.
+  // Every vertex full (or filled to its part's share) at its part's pressure. A sealed part's total is
+  // unchanged up to rounding; a part with a fixed vertex books what it gained or lost as that vertex's
+  // exchange.
   for (size_t v = 0; v < vertices_; ++v) {
     const size_t r = size_t(find(int32_t(v)));
     const double p = new_pressure_[r];
-    s.mass[v] = eos_.density(p) * volume_at(in, v, p);
+    s.mass[v] = fill[r] * eos_.density(p) * volume_at(in, v, p);
     s.pressure[v] = p;
     if (fixed_vertex[r] >= 0) mass[r] -= s.mass[v];
     if (FlowRole(s.role[v]) == FlowRole::dry) s.wetting_time[v] = in.time;
-    if (FlowRole(s.role[v]) != FlowRole::fixed) s.role[v] = uint8_t(FlowRole::wet);
+    if (FlowRole(s.role[v]) != FlowRole::fixed)
+      s.role[v] = uint8_t(fill[r] < 1.0 ? FlowRole::filling : FlowRole::wet);
   }
   for (size_t r = 0; r < vertices_; ++r)
     if (fixed_vertex[r] >= 0 && size_t(find(int32_t(r))) == r)

@@ -35,7 +35,16 @@ void fsync_path(const std::filesystem::path& path, int flags) {
 }  // namespace
 
 AtomicPath::AtomicPath(std::filesystem::path target)
-    : target_(std::move(target)), temp_(temp_for(target_, ::getpid())) {}
+    : target_(std::move(target)), temp_(temp_for(target_, ::getpid())) {
+  // A failure here (e.g. a read-only folder) surfaces when the writer creates the file.
+  ::unlink(temp_.c_str());
+}
+
+int AtomicPath::create_temp() const {
+  const int fd = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot create", temp_, errno);
+  return fd;
+}
 
 AtomicPath::~AtomicPath() {
   if (!committed_) {
@@ -46,7 +55,7 @@ AtomicPath::~AtomicPath() {
 
 void AtomicPath::commit() {
   if (committed_) return;
-  fsync_path(temp_, O_RDONLY);
+  fsync_path(temp_, O_RDONLY | O_NOFOLLOW);
   if (::rename(temp_.c_str(), target_.c_str()) != 0)
     throw Error("cannot rename '" + temp_.string() + "' to '" + target_.string() +
                 "': " + std::strerror(errno));
@@ -73,8 +82,7 @@ std::filesystem::path AtomicPath::temp_for(const std::filesystem::path& target, 
 
 void write_text_atomic(const std::filesystem::path& path, std::string_view text) {
   AtomicPath atomic(path);
-  const int fd = ::open(atomic.temp().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail("cannot create", atomic.temp(), errno);
+  const int fd = atomic.create_temp();
   const char* p = text.data();
   size_t left = text.size();
   while (left > 0) {

@@ -3,6 +3,8 @@
 // sibling `<target>.tmp-<pid>`, flushed to disk and renamed over the target, so a run killed at any
 // moment leaves either the previous complete file or the new complete file, never a torn one.
 // rename(2) is atomic only within one file system, which the sibling temp guarantees.
+// The temp file is always created exclusively (O_CREAT | O_EXCL | O_NOFOLLOW, or HDF5's H5F_ACC_EXCL),
+// so a symbolic link planted at its predictable name can never make a writer truncate the link's target.
 #include <sys/types.h>
 
 #include <filesystem>
@@ -12,6 +14,8 @@ namespace rift {
 
 class AtomicPath {
  public:
+  // Removes whatever is at temp() already: a leftover of a dead process that had our pid, or a planted
+  // link (unlink removes the link itself, never its target). The writer then creates temp() exclusively.
   explicit AtomicPath(std::filesystem::path target);
   AtomicPath(const AtomicPath&) = delete;
   AtomicPath& operator=(const AtomicPath&) = delete;
@@ -19,8 +23,12 @@ class AtomicPath {
   ~AtomicPath();
 
   const std::filesystem::path& target() const { return target_; }
-  // Where the caller writes; the file may or may not exist yet.
+  // Where the caller writes. The caller creates it exclusively (create_temp(), or
+  // H5File::Mode::create), so that nothing is written through a link someone puts there meanwhile.
   const std::filesystem::path& temp() const { return temp_; }
+  // Creates temp() with O_CREAT | O_EXCL | O_NOFOLLOW for writing and returns the descriptor, which the
+  // caller closes. Throws rift::Error naming the file and the OS reason.
+  int create_temp() const;
 
   // fsyncs the temp file, renames it over the target and fsyncs the directory (so the rename itself
   // survives a power cut). The temp file must be closed by the writer first. Throws rift::Error.

@@ -91,7 +91,7 @@ std::vector<TablePlan> plan_restore(const H5File& h5, Store& store) {
 
 void write_checkpoint(const std::filesystem::path& file, const Store& store, const CheckpointMeta& meta) {
   AtomicPath atomic(file);
-  H5File h5(atomic.temp(), H5File::Mode::truncate);
+  H5File h5(atomic.temp(), H5File::Mode::create);
   h5.set_int_attr("/", "format_version", checkpoint_format_version);
   h5.set_string_attr("/", "rift_version", meta.rift_version);
   h5.set_string_attr("/", "scene_hash", meta.scene_hash);

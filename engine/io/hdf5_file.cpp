@@ -184,8 +184,11 @@ H5File::H5File(std::filesystem::path path, Mode mode) : path_(std::move(path)) {
     id_ = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl);
     if (id_ < 0) h5_fail(path_, "", "cannot open for reading (not an HDF5 file, or truncated)");
   } else {
-    id_ = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    if (id_ < 0) h5_fail(path_, "", "cannot create");
+    const unsigned flags = mode == Mode::create ? H5F_ACC_EXCL : H5F_ACC_TRUNC;
+    id_ = H5Fcreate(path_.c_str(), flags, H5P_DEFAULT, fapl);
+    if (id_ < 0)
+      h5_fail(path_, "",
+              mode == Mode::create ? "cannot create (something is at that path already)" : "cannot create");
   }
 }
 

@@ -28,7 +28,10 @@ struct H5DatasetInfo {
 
 class H5File {
  public:
-  enum class Mode { read, truncate };
+  // truncate: creates the file or empties an existing one. create: creates a new file and fails when
+  // anything is at the path already, a symbolic link included (O_EXCL semantics), so nothing is ever
+  // written through a link: how every temporary file of an AtomicPath is opened.
+  enum class Mode { read, truncate, create };
 
   // Datasets larger than this are chunked and deflate-compressed; smaller ones are contiguous
   // (compression overhead outweighs the gain for a few kilobytes).

@@ -106,7 +106,7 @@ void XdmfSeries::write_mesh_files(std::span<const XdmfGrid> grids) {
                         "(restore the counter from the checkpoint on restart)");
     const std::filesystem::path target = dir_ / mesh_file_name(basename_, g.name, g.mesh_revision);
     AtomicPath atomic(target);
-    H5File file(atomic.temp(), H5File::Mode::truncate);
+    H5File file(atomic.temp(), H5File::Mode::create);
     file.write("/cells", ElementType::i32, g.cells, g.cell_count, nodes_per_cell(g.topology));
     if (!g.points_move) file.write("/points", ElementType::f64, g.points, g.point_count, 3);
     file.set_int_attr("/", "mesh_revision", static_cast<int64_t>(g.mesh_revision));
@@ -139,7 +139,7 @@ XdmfSeries::Entry XdmfSeries::write_step_file(double time, int64_t step,
   if (!has_data) return entry;
 
   AtomicPath atomic(dir_ / step_file);
-  H5File file(atomic.temp(), H5File::Mode::truncate);
+  H5File file(atomic.temp(), H5File::Mode::create);
   file.set_double_attr("/", "time", time);
   file.set_int_attr("/", "step", step);
   for (const XdmfGrid& g : grids) {

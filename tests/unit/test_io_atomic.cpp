@@ -1,11 +1,13 @@
 // Atomic file replacement and the run summary JSON.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <sstream>
 
 #include "engine/core/error.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/hdf5_file.hpp"
 #include "engine/io/run_summary.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 
@@ -54,6 +56,57 @@ TEST(AtomicFile, ErrorsNameThePathAndReason) {
     EXPECT_NE(msg.find((dir / "missing-dir").string()), std::string::npos) << msg;
     EXPECT_NE(msg.find("No such file or directory"), std::string::npos) << msg;
   }
+}
+
+TEST(AtomicFile, ALinkAtTheTempNameIsNeverWrittenThrough) {
+  // `<target>.tmp-<pid>` is predictable: a link planted there must not make the writer truncate or fill
+  // the link's target, whether the link is there before the write starts or appears during it.
+  test::TempDir dir;
+  const auto victim = dir / "victim.txt";
+  std::ofstream(victim) << "precious";
+  const auto file = dir / "scene.yaml";
+  std::filesystem::create_symlink(victim, AtomicPath::temp_for(file, ::getpid()));
+  write_text_atomic(file, "new");
+  EXPECT_EQ(slurp(file), "new");
+  EXPECT_EQ(slurp(victim), "precious");
+  EXPECT_FALSE(std::filesystem::is_symlink(file));
+  EXPECT_EQ(file_count(dir.path()), 2u);
+
+  {
+    AtomicPath atomic(dir / "late.txt");
+    std::filesystem::create_symlink(victim, atomic.temp());  // planted after the leftover check
+    const std::string msg = test::error_of([&] { atomic.create_temp(); });
+    EXPECT_NE(msg.find("cannot create '" + atomic.temp().string() + "': File exists"), std::string::npos)
+        << msg;
+  }
+  EXPECT_EQ(slurp(victim), "precious");
+}
+
+TEST(AtomicFile, ALinkAtAnHdf5TempNameIsNeverWrittenThrough) {
+  test::TempDir dir;
+  const auto victim = dir / "victim.h5";
+  std::ofstream(victim) << "precious";
+  const auto file = dir / "out_00000001.h5";
+  std::filesystem::create_symlink(victim, AtomicPath::temp_for(file, ::getpid()));
+  {
+    AtomicPath atomic(file);
+    H5File h5(atomic.temp(), H5File::Mode::create);
+    h5.set_int_attr("/", "step", 1);
+    h5.close();
+    atomic.commit();
+  }
+  EXPECT_EQ(H5File(file, H5File::Mode::read).int_attr("/", "step"), 1);
+  EXPECT_EQ(slurp(victim), "precious");
+
+  AtomicPath atomic(dir / "late.h5");
+  for (const auto& target : {victim, dir / "dangling"}) {
+    std::filesystem::create_symlink(target, atomic.temp());
+    const std::string msg = test::error_of([&] { H5File(atomic.temp(), H5File::Mode::create); });
+    EXPECT_NE(msg.find("cannot create (something is at that path already)"), std::string::npos) << msg;
+    std::filesystem::remove(atomic.temp());
+  }
+  EXPECT_EQ(slurp(victim), "precious");
+  EXPECT_FALSE(std::filesystem::exists(dir / "dangling"));
 }
 
 TEST(AtomicFile, TempNamesAreRecognised) {

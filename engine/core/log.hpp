@@ -13,6 +13,7 @@ void init_logging(bool verbose, bool quiet);
 void buffer_log_messages();
 // Appends; replaces a previous log file. Throws rift::Error naming the file and the OS reason when it
 // cannot be opened.
+// A symbolic link (or anything but a regular file) at `file` is refused, never written through.
 void open_log_file(const std::filesystem::path& file);
 void close_log_file();
 

@@ -134,6 +134,20 @@ TEST(Cli, LogFileThatCannotBeOpenedIsReported) {
       << r.output;
 }
 
+TEST(Cli, ALinkAtTheLogFileIsRefusedNotWrittenThrough) {
+  test::TempDir dir;
+  std::ofstream(dir / "victim") << "precious";
+  fs::create_directories(dir / "out");
+  fs::create_symlink(dir / "victim", dir / "out" / "rift.log");
+  const CliResult r = rift(quick_run(dir / "out"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot open the log file '" + (dir / "out" / "rift.log").string() +
+                          "': it is a symbolic link, which Rift does not write through"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(test::slurp(dir / "victim"), "precious");
+}
+
 TEST(Cli, RestartFromADamagedTimeSeriesIsRefused) {
   test::TempDir dir;
   const fs::path out = dir / "out";

@@ -197,6 +197,9 @@ void XdmfSeries::rebuild_mesh_state() {
 
 void XdmfSeries::resume(double time) {
   load_sidecar();
+  // Only files this series wrote for the dropped entries are deleted: the step file and mesh files named
+  // exactly as write() names them, in dir_. The sidecar is a file anyone can edit; a name in it such as
+  // "/home/x" or "../x" is never deleted.
   std::set<std::string> kept, dropped;
   auto files_of = [](const Entry& e, std::set<std::string>& out) {
     for (const GridEntry& g : e.grids) {
@@ -205,14 +208,23 @@ void XdmfSeries::resume(double time) {
       for (const FieldEntry& f : g.fields) out.insert(f.data.file);
     }
   };
+  auto own_files_of = [&](const Entry& e, std::set<std::string>& out) {
+    std::set<std::string> named;
+    files_of(e, named);
+    std::set<std::string> own{step_file_name(basename_, e.step)};
+    for (const GridEntry& g : e.grids)
+      if (is_plain_name(g.name)) own.insert(mesh_file_name(basename_, g.name, g.mesh_revision));
+    for (const std::string& file : named)
+      if (own.count(file) && is_plain_name(file)) out.insert(file);
+  };
   while (!entries_.empty() && entries_.back().time > time) {
-    files_of(entries_.back(), dropped);
+    own_files_of(entries_.back(), dropped);
     entries_.pop_back();
   }
   for (const Entry& e : entries_) files_of(e, kept);
   for (const std::string& file : dropped) {
     if (kept.count(file)) continue;
-    std::error_code ignored;  // already gone is fine
+    std::error_code ignored;  // already gone is fine; remove() deletes a link itself, not its target
     std::filesystem::remove(dir_ / file, ignored);
   }
   rebuild_mesh_state();

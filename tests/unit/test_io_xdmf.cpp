@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "engine/core/error.hpp"
@@ -386,6 +387,45 @@ TEST(XdmfSeries, ResumeDropsLaterEntriesAndKeepsTheMesh) {
   from_scratch.resume(-1.0);  // a restart before the first output
   EXPECT_EQ(from_scratch.entries(), 0u);
   EXPECT_TRUE(balanced_tags(slurp(dir / "out.xdmf")));
+}
+
+TEST(XdmfSeries, ResumeDeletesOnlyFilesItNamedItself) {
+  // The sidecar is a file anyone can edit: names in it that the series never writes (an absolute path,
+  // "../x", another series' file, a step file under another step) are never deleted on restart.
+  test::TempDir dir;
+  const Mesh mesh;
+  const auto run = dir / "run";
+  {
+    XdmfSeries series(run, "out");
+    write_step(series, 0.0, 0, mesh, 7);
+    write_step(series, 1.0, 20, mesh, 7);
+  }
+  const auto victim = dir / "victim.h5", outside = dir / "outside.h5";
+  std::ofstream(victim) << "keep";
+  std::ofstream(outside) << "keep";
+  std::ofstream(run / "other_00000020.h5") << "keep";
+  std::ofstream(run / "out_00000021.h5") << "keep";
+  auto json = nlohmann::json::parse(slurp(run / "out.series.json"));
+  auto& fields = json.at("entries").at(1).at("grids").at(0).at("fields");
+  ASSERT_GE(fields.size(), 1u);
+  const std::vector<std::string> foreign{victim.string(), "../outside.h5", "other_00000020.h5",
+                                         "out_00000021.h5"};
+  for (const std::string& name : foreign) {
+    auto field = fields.at(0);
+    field["name"] = "f" + std::to_string(fields.size());
+    field["data"]["file"] = name;
+    fields.push_back(field);
+  }
+  std::ofstream(run / "out.series.json") << json.dump(1);
+
+  XdmfSeries restarted(run, "out");
+  restarted.resume(0.5);
+  EXPECT_EQ(restarted.entries(), 1u);
+  EXPECT_FALSE(std::filesystem::exists(run / "out_00000020.h5")) << "the dropped entry's own step file";
+  EXPECT_EQ(slurp(victim), "keep");
+  EXPECT_EQ(slurp(outside), "keep");
+  EXPECT_EQ(slurp(run / "other_00000020.h5"), "keep");
+  EXPECT_EQ(slurp(run / "out_00000021.h5"), "keep");
 }
 
 TEST(XdmfSeries, ResumeWithoutEarlierOutputStartsEmpty) {

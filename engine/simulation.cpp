@@ -146,16 +146,26 @@ void Simulation::choose_dt() {
                total_steps_, t.end, options_.threads);
 }
 
+// A checkpoint that cannot be read as one (truncated, foreign, another format, a checksum that fails) is
+// damage: the restart warns and takes the previous one. An intact checkpoint that does not fit this run
+// (another scene, dt, tables) is refused at once: the older ones of the same run would not fit either.
 void Simulation::restart_from_latest() {
   if (!checkpoints_) throw Error("--restart needs an output folder");
-  const auto latest = checkpoints_->latest();
-  if (!latest)
-    throw Error("--restart latest: no readable checkpoint in " + (options_.out_dir / "checkpoints").string() +
-                "; run without --restart, or point --out at the folder of the interrupted run");
+  std::vector<CheckpointProblem> skipped;
+  const auto latest = checkpoints_->latest(&skipped);
+  for (const CheckpointProblem& p : skipped)
+    spdlog::warn("--restart latest: skipping {}: {}", p.file.string(), p.reason);
+  if (!latest) {
+    std::string message = "--restart latest: no intact checkpoint in " + checkpoints_->dir().string();
+    for (const CheckpointProblem& p : skipped) message += "\n  " + p.file.string() + ": " + p.reason;
+    throw Error(message + "\nRun without --restart, or point --out at the folder of the interrupted run");
+  }
   const CheckpointMeta meta = read_checkpoint(*latest, world_->store);
   if (meta.scene_hash != scene_.hash)
     throw Error("--restart latest: " + latest->string() + " was written for scene hash " + meta.scene_hash +
-                ", this scene resolves to " + scene_.hash + ". A restart continues the same scene; compare " +
+                ", this scene resolves to " + scene_.hash +
+                ". A restart continues the same scene (and mesh "
+                "files); compare " +
                 (options_.out_dir / "scene.yaml").string() + " with your scene and overrides.");
   if (meta.dt != dt_)
     throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s",

@@ -1,15 +1,21 @@
 #include "engine/io/checkpoint.hpp"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <set>
 
 #include "engine/core/error.hpp"
+#include "engine/core/fnv1a.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/hdf5_file.hpp"
 
@@ -29,6 +35,109 @@ std::string table_group(const std::string& table) {
 
 std::string describe(ElementType type, int components) {
   return std::string(element_type_name(type)) + " x " + std::to_string(components);
+}
+
+std::string damaged(const std::filesystem::path& file) {
+  return "checkpoint " + file.string() + " is damaged: ";
+}
+
+std::string bits_hex(double value) {
+  return hex16(std::bit_cast<uint64_t>(value));
+}
+
+// What the metadata checksum says about one column and one table.
+struct ColumnDigest {
+  std::string type;
+  int64_t components;
+  std::string checksum;  // fnv1a64 of the column's bytes
+};
+struct TableDigest {
+  int64_t rows;
+  std::map<std::string, ColumnDigest> columns;
+};
+
+// The text meta_fnv1a64 hashes. Tables and columns come in name order (the order HDF5 lists them in,
+// whatever order the store has them in), doubles as their bit patterns, every value length-prefixed.
+std::string meta_text(const CheckpointMeta& meta, const std::map<std::string, TableDigest>& tables) {
+  std::string text;
+  auto line = [&](const std::string& key, const std::string& value) {
+    text += key + " " + std::to_string(value.size()) + ":" + value + "\n";
+  };
+  line("format_version", std::to_string(checkpoint_format_version));
+  line("rift_version", meta.rift_version);
+  line("scene_hash", meta.scene_hash);
+  line("step", std::to_string(meta.step));
+  line("time", bits_hex(meta.time));
+  line("dt", bits_hex(meta.dt));
+  line("scene", meta.resolved_scene);
+  for (const auto& [key, value] : meta.scalars) line("scalar " + key, bits_hex(value));
+  for (const auto& [key, value] : meta.integers) line("integer " + key, std::to_string(value));
+  for (const auto& [name, table] : tables) {
+    line("table " + name, std::to_string(table.rows));
+    for (const auto& [column, c] : table.columns)
+      line("column " + name + "." + column, c.type + " " + std::to_string(c.components) + " " + c.checksum);
+  }
+  return text;
+}
+
+std::string meta_checksum(const CheckpointMeta& meta, const std::map<std::string, TableDigest>& tables) {
+  const std::string text = meta_text(meta, tables);
+  return hex16(fnv1a64(text.data(), text.size()));
+}
+
+// An open checkpoint whose metadata matched its checksum.
+struct CheckedFile {
+  H5File h5;
+  CheckpointMeta meta;
+  std::map<std::string, TableDigest> tables;
+};
+
+CheckedFile open_checked(const std::filesystem::path& file) {
+  H5File h5(file, H5File::Mode::read);
+  if (!h5.has_attr("/", "format_version"))
+    throw Error("checkpoint " + file.string() + " is not a Rift checkpoint (no format_version attribute)");
+  const int64_t version = h5.int_attr("/", "format_version");
+  if (version != checkpoint_format_version)
+    throw Error("checkpoint " + file.string() + " has format_version " + std::to_string(version) +
+                ", this build of Rift reads format_version " + std::to_string(checkpoint_format_version));
+
+  CheckpointMeta meta;
+  meta.step = h5.int_attr("/", "step");
+  meta.time = h5.double_attr("/", "time");
+  meta.dt = h5.double_attr("/", "dt");
+  meta.scene_hash = h5.string_attr("/", "scene_hash");
+  meta.rift_version = h5.string_attr("/", "rift_version");
+  meta.resolved_scene = h5.read_string("/scene");
+  for (const std::string& key : h5.attr_names("/scalars"))
+    meta.scalars[key] = h5.double_attr("/scalars", key);
+  for (const std::string& key : h5.attr_names("/integers"))
+    meta.integers[key] = h5.int_attr("/integers", key);
+  std::map<std::string, TableDigest> tables;
+  for (const std::string& name : h5.children("/tables")) {
+    const std::string group = table_group(name);
+    TableDigest& t = tables[name];
+    t.rows = h5.int_attr(group, "rows");
+    for (const std::string& column : h5.children(group)) {
+      const std::string dataset = group + "/" + column;
+      t.columns[column] = {h5.string_attr(dataset, "type"), h5.int_attr(dataset, "components"),
+                           h5.string_attr(dataset, "fnv1a64")};
+    }
+  }
+  if (h5.string_attr("/", "meta_fnv1a64") != meta_checksum(meta, tables))
+    throw Error(
+        damaged(file) +
+        "its metadata (clock, scene, scalars, integers, table and column descriptions) does not match "
+        "the checksum stored with it");
+  return {std::move(h5), std::move(meta), std::move(tables)};
+}
+
+void check_column(const CheckedFile& f, const std::string& table, const std::string& column, const void* data,
+                  size_t bytes) {
+  const std::string& stored = f.tables.at(table).columns.at(column).checksum;
+  const std::string actual = hex16(fnv1a64(data, bytes));
+  if (actual != stored)
+    throw Error(damaged(f.h5.path()) + "the data of column '" + table + "." + column +
+                "' does not match its checksum (stored " + stored + ", the data gives " + actual + ")");
 }
 
 // What read_checkpoint will do to one table, decided before anything in the store changes.
@@ -105,51 +214,56 @@ void write_checkpoint(const std::filesystem::path& file, const Store& store, con
   for (const auto& [key, value] : meta.integers) h5.set_int_attr("/integers", key, value);
 
   h5.create_groups("/tables");
+  std::map<std::string, TableDigest> tables;
   for (const auto& table : store.tables()) {
     check_name("table", table->name());
     const std::string group = table_group(table->name());
     h5.create_groups(group);
     h5.set_int_attr(group, "rows", static_cast<int64_t>(table->size()));
+    TableDigest& digest = tables[table->name()];
+    digest.rows = static_cast<int64_t>(table->size());
     for (const auto& column : table->columns()) {
       check_name("column of table " + table->name(), column->name());
       const std::string dataset = group + "/" + column->name();
       h5.write(dataset, column->type(), column->data(), column->rows(), column->components());
-      h5.set_string_attr(dataset, "type", element_type_name(column->type()));
-      h5.set_int_attr(dataset, "components", column->components());
+      const ColumnDigest c{element_type_name(column->type()), column->components(),
+                           hex16(fnv1a64(column->data(), column->bytes()))};
+      h5.set_string_attr(dataset, "type", c.type);
+      h5.set_int_attr(dataset, "components", c.components);
+      h5.set_string_attr(dataset, "fnv1a64", c.checksum);
+      digest.columns[column->name()] = c;
     }
   }
+  h5.set_string_attr("/", "meta_fnv1a64", meta_checksum(meta, tables));
   h5.close();
   atomic.commit();
 }
 
+CheckpointMeta verify_checkpoint(const std::filesystem::path& file) {
+  const CheckedFile f = open_checked(file);
+  std::vector<std::byte> buffer;
+  for (const auto& [table, digest] : f.tables)
+    for (const auto& [column, c] : digest.columns) {
+      const std::string dataset = table_group(table) + "/" + column;
+      const H5DatasetInfo info = f.h5.info(dataset);
+      buffer.resize(info.rows * info.components * element_size(info.type));
+      f.h5.read(dataset, info.type, buffer.data(), info.rows, info.components);
+      check_column(f, table, column, buffer.data(), buffer.size());
+    }
+  return f.meta;
+}
+
 CheckpointMeta read_checkpoint(const std::filesystem::path& file, Store& store) {
-  H5File h5(file, H5File::Mode::read);
-  if (!h5.has_attr("/", "format_version"))
-    throw Error("checkpoint " + file.string() + " is not a Rift checkpoint (no format_version attribute)");
-  const int64_t version = h5.int_attr("/", "format_version");
-  if (version != checkpoint_format_version)
-    throw Error("checkpoint " + file.string() + " has format_version " + std::to_string(version) +
-                ", this build of Rift reads format_version " + std::to_string(checkpoint_format_version));
-
-  CheckpointMeta meta;
-  meta.step = h5.int_attr("/", "step");
-  meta.time = h5.double_attr("/", "time");
-  meta.dt = h5.double_attr("/", "dt");
-  meta.scene_hash = h5.string_attr("/", "scene_hash");
-  meta.rift_version = h5.string_attr("/", "rift_version");
-  meta.resolved_scene = h5.read_string("/scene");
-  for (const std::string& key : h5.attr_names("/scalars"))
-    meta.scalars[key] = h5.double_attr("/scalars", key);
-  for (const std::string& key : h5.attr_names("/integers"))
-    meta.integers[key] = h5.int_attr("/integers", key);
-
-  for (const TablePlan& p : plan_restore(h5, store)) {
+  const CheckedFile f = open_checked(file);
+  for (const TablePlan& p : plan_restore(f.h5, store)) {
     p.table->resize(p.rows);
-    for (const auto& column : p.table->columns())
-      h5.read(table_group(p.table->name()) + "/" + column->name(), column->type(), column->data(), p.rows,
-              column->components());
+    for (const auto& column : p.table->columns()) {
+      f.h5.read(table_group(p.table->name()) + "/" + column->name(), column->type(), column->data(), p.rows,
+                column->components());
+      check_column(f, p.table->name(), column->name(), column->data(), column->bytes());
+    }
   }
-  return meta;
+  return f.meta;
 }
 
 CheckpointSet::CheckpointSet(std::filesystem::path out_dir, int keep)
@@ -158,6 +272,7 @@ CheckpointSet::CheckpointSet(std::filesystem::path out_dir, int keep)
     throw Error(
         "checkpoints: keep must be at least 1 (the newest checkpoint is what a restart reads), found " +
         std::to_string(keep));
+  check_not_link();
 }
 
 namespace {
@@ -214,13 +329,24 @@ std::filesystem::path CheckpointSet::path_for(int64_t step) const {
   return dir_ / checkpoint_name(step);
 }
 
+void CheckpointSet::check_not_link() const {
+  std::error_code ec;
+  if (std::filesystem::symlink_status(dir_, ec).type() == std::filesystem::file_type::symlink)
+    throw Error("checkpoint folder '" + dir_.string() +
+                "' is a symbolic link: Rift writes and prunes checkpoints only in a folder of its own inside "
+                "the output folder and does not follow links out of it; remove the link");
+}
+
 std::vector<std::pair<int64_t, std::filesystem::path>> CheckpointSet::list() const {
+  check_not_link();
   std::vector<std::pair<int64_t, std::filesystem::path>> out;
   std::error_code ec;
   for (auto it = std::filesystem::directory_iterator(dir_, ec);
        !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
     const int64_t step = step_of(it->path().filename().string());
-    if (step >= 0 && it->is_regular_file(ec)) out.emplace_back(step, it->path());
+    std::error_code type_ec;
+    if (step >= 0 && it->symlink_status(type_ec).type() == std::filesystem::file_type::regular)
+      out.emplace_back(step, it->path());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -228,6 +354,7 @@ std::vector<std::pair<int64_t, std::filesystem::path>> CheckpointSet::list() con
 
 std::filesystem::path CheckpointSet::write(const Store& store, const CheckpointMeta& meta) {
   if (meta.step < 0) throw Error("checkpoint step " + std::to_string(meta.step) + " is negative");
+  check_not_link();
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec) throw Error("cannot create checkpoint directory '" + dir_.string() + "': " + ec.message());
@@ -237,32 +364,47 @@ std::filesystem::path CheckpointSet::write(const Store& store, const CheckpointM
   return file;
 }
 
+// Works on the folder through one descriptor opened with O_NOFOLLOW and deletes with unlinkat: even a
+// folder swapped for a link while the run goes on cannot lead a deletion out of the output folder.
 void CheckpointSet::prune() const {
-  const auto all = list();
-  for (size_t i = 0; i + keep_ < all.size(); ++i) {
-    std::error_code ec;
-    std::filesystem::remove(all[i].second, ec);
-    if (ec) throw Error("cannot delete old checkpoint '" + all[i].second.string() + "': " + ec.message());
+  const int fd = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) throw Error("cannot open checkpoint folder '" + dir_.string() + "': " + std::strerror(errno));
+  DIR* folder = ::fdopendir(fd);
+  if (!folder) {
+    const int err = errno;
+    ::close(fd);
+    throw Error("cannot list checkpoint folder '" + dir_.string() + "': " + std::strerror(err));
   }
-  std::error_code ec;
-  for (auto it = std::filesystem::directory_iterator(dir_, ec);
-       !ec && it != std::filesystem::directory_iterator(); it.increment(ec)) {
-    std::error_code ignored;  // a leftover another process removes first is not an error
-    if (is_orphan_temp(it->path())) std::filesystem::remove(it->path(), ignored);
+  std::vector<std::pair<int64_t, std::string>> checkpoints;
+  std::vector<std::string> orphans;
+  while (const dirent* entry = ::readdir(folder)) {
+    const std::string name = entry->d_name;
+    struct stat st {};
+    if (::fstatat(fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) continue;
+    if (const int64_t step = step_of(name); step >= 0)
+      checkpoints.emplace_back(step, name);
+    else if (is_orphan_temp(name))
+      orphans.push_back(name);
   }
+  std::sort(checkpoints.begin(), checkpoints.end());
+  std::string failure;
+  for (size_t i = 0; i + keep_ < checkpoints.size(); ++i)
+    if (::unlinkat(fd, checkpoints[i].second.c_str(), 0) != 0 && errno != ENOENT && failure.empty())
+      failure = "cannot delete old checkpoint '" + (dir_ / checkpoints[i].second).string() +
+                "': " + std::strerror(errno);
+  for (const std::string& name : orphans) ::unlinkat(fd, name.c_str(), 0);  // gone meanwhile is fine
+  ::closedir(folder);
+  if (!failure.empty()) throw Error(failure);
 }
 
-std::optional<std::filesystem::path> CheckpointSet::latest() const {
+std::optional<std::filesystem::path> CheckpointSet::latest(std::vector<CheckpointProblem>* skipped) const {
   const auto all = list();
   for (auto it = all.rbegin(); it != all.rend(); ++it) {
     try {
-      H5File h5(it->second, H5File::Mode::read);
-      if (h5.has_attr("/", "format_version") &&
-          h5.int_attr("/", "format_version") == checkpoint_format_version && h5.has_attr("/", "step") &&
-          h5.is_group("/tables"))
-        return it->second;
-    } catch (const Error&) {
-      // unreadable (truncated, garbage, foreign): fall back to the next older one
+      verify_checkpoint(it->second);
+      return it->second;
+    } catch (const Error& e) {
+      if (skipped) skipped->push_back({it->second, e.what()});
     }
   }
   return std::nullopt;

@@ -1,13 +1,18 @@
 #pragma once
 // Checkpoints: the whole Store plus the run's clock and scene in one HDF5 file, written atomically.
 //
-// Layout (format_version 1):
-//   /                  attributes format_version, rift_version, scene_hash, step, time, dt
+// Layout (format_version 2):
+//   /                  attributes format_version, rift_version, scene_hash, step, time, dt, meta_fnv1a64
 //   /scene             string dataset: the resolved scene YAML the run was built from
 //   /scalars           group; one double attribute per entry of CheckpointMeta::scalars
 //   /integers          group; one int64 attribute per entry of CheckpointMeta::integers
 //   /tables/<table>    group with attribute rows; one dataset per column, named like the column,
-//                      with attributes type ("f64" ...) and components; rows x components values
+//                      with attributes type ("f64" ...), components and fnv1a64; rows x components values
+//
+// Integrity: fnv1a64 (16 hex digits) is the FNV-1a 64 of a column's values as stored (little-endian);
+// meta_fnv1a64 covers everything else: the attributes above, the scene text, the scalars and integers,
+// every table's row count and every column's type, components and fnv1a64. A reader recomputes both,
+// so one changed byte anywhere in the data or the metadata is reported instead of restored.
 //
 // Restoring is strict: the run rebuilds its world from the scene first, so every table and column
 // must exist on both sides with the same type and component count. Values come back bit for bit
@@ -23,7 +28,7 @@
 
 namespace rift {
 
-inline constexpr int64_t checkpoint_format_version = 1;
+inline constexpr int64_t checkpoint_format_version = 2;
 
 struct CheckpointMeta {
   int64_t step = 0;
@@ -39,32 +44,50 @@ struct CheckpointMeta {
 // Atomic: a crash leaves the previous `file` (if any) intact. Throws rift::Error.
 void write_checkpoint(const std::filesystem::path& file, const Store& store, const CheckpointMeta& meta);
 
+// Checks that `file` is an intact checkpoint this build reads, without any store: it opens, has this
+// format_version, and its metadata and the data of every column match their checksums (every value
+// is read once). Returns the metadata; throws rift::Error naming the file and what is wrong with it.
+CheckpointMeta verify_checkpoint(const std::filesystem::path& file);
+
 // Every table and column of the checkpoint must already exist in `store` and vice versa; tables are
-// resized to the stored row count. On any mismatch nothing in `store` is changed and a rift::Error
-// names the file and the table/column.
+// resized to the stored row count. On any mismatch of tables or columns nothing in `store` is changed
+// and a rift::Error names the file and the table/column. Each column's checksum is checked as it is
+// read: a damaged column throws after the columns before it were restored (verify_checkpoint first
+// tells whether a file is intact without touching a store).
 CheckpointMeta read_checkpoint(const std::filesystem::path& file, Store& store);
+
+// A checkpoint a restart could not use, and why.
+struct CheckpointProblem {
+  std::filesystem::path file;
+  std::string reason;
+};
 
 // The checkpoints of one run: out_dir/checkpoints/ckpt_<step:010>.h5, pruned to the newest `keep`.
 class CheckpointSet {
  public:
-  CheckpointSet(std::filesystem::path out_dir, int keep);  // keep >= 1
+  CheckpointSet(std::filesystem::path out_dir, int keep);  // keep >= 1; refuses a `checkpoints` link
 
   const std::filesystem::path& dir() const { return dir_; }
   std::filesystem::path path_for(int64_t step) const;
 
   // Writes the checkpoint for meta.step, then deletes all but the newest `keep` checkpoints and the
   // temporary files our writer left for them ("ckpt_<step:010>.h5.tmp-<pid>") whose process no longer
-  // exists. Any other file in the folder is left alone.
+  // exists. Only regular files of exactly these names, inside the folder itself, are deleted: links
+  // and any other file are left alone.
   std::filesystem::path write(const Store& store, const CheckpointMeta& meta);
 
-  // The newest checkpoint that opens as a Rift checkpoint; temp leftovers and truncated or foreign
-  // files are skipped.
-  std::optional<std::filesystem::path> latest() const;
+  // The newest checkpoint that verify_checkpoint accepts. Each newer one that it rejects (truncated,
+  // foreign, another format_version, a checksum that does not match) is appended to `skipped`, newest
+  // first, with the reason.
+  std::optional<std::filesystem::path> latest(std::vector<CheckpointProblem>* skipped = nullptr) const;
 
-  // All ckpt_<step>.h5 files by step, oldest first (readable or not).
+  // All ckpt_<step>.h5 regular files by step, oldest first (intact or not).
   std::vector<std::pair<int64_t, std::filesystem::path>> list() const;
 
  private:
+  // The folder must not be a symbolic link: checkpoints are written, and old ones deleted, inside the
+  // output folder only. Throws rift::Error when it is one.
+  void check_not_link() const;
   void prune() const;
 
   std::filesystem::path dir_;

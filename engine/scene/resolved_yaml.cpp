@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "engine/core/fnv1a.hpp"
 #include "engine/scene/number_text.hpp"
 
 namespace rift {
@@ -368,14 +369,7 @@ std::string emit_resolved_yaml(const Scene& scene) {
 }
 
 std::string fnv1a64_hex(std::string_view text) {
-  uint64_t h = 14695981039346656037ull;  // FNV-1a 64 offset basis
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;  // FNV 64 prime
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  return hex16(fnv1a64(text.data(), text.size()));
 }
 
 }  // namespace rift

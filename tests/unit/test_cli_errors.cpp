@@ -148,6 +148,22 @@ TEST(Cli, ALinkAtTheLogFileIsRefusedNotWrittenThrough) {
   EXPECT_EQ(test::slurp(dir / "victim"), "precious");
 }
 
+TEST(Cli, ACheckpointsLinkOutOfTheOutputFolderIsRefused) {
+  test::TempDir dir;
+  fs::create_directories(dir / "elsewhere");
+  std::ofstream(dir / "elsewhere" / "ckpt_0000000001.h5") << "precious";
+  fs::create_directories(dir / "out");
+  fs::create_directory_symlink(dir / "elsewhere", dir / "out" / "checkpoints");
+  const CliResult r =
+      rift(quick_run(dir / "out", {"--set", "checkpoint.every_steps=1", "--set", "checkpoint.keep=1"}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'" + (dir / "out" / "checkpoints").string() + "' is a symbolic link"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(test::slurp(dir / "elsewhere" / "ckpt_0000000001.h5"), "precious");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "elsewhere"), {}), 1);
+}
+
 TEST(Cli, RestartFromADamagedTimeSeriesIsRefused) {
   test::TempDir dir;
   const fs::path out = dir / "out";

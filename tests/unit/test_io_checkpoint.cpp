@@ -12,6 +12,7 @@
 #include "engine/core/error.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/hdf5_file.hpp"
+#include "tests/unit/test_checkpoint_damage.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 
 namespace rift {
@@ -126,7 +127,7 @@ TEST(Checkpoint, LayoutIsTheDocumentedOne) {
   fill(store);
   write_checkpoint(dir / "c.h5", store, sample_meta(7));
   H5File h5(dir / "c.h5", H5File::Mode::read);
-  EXPECT_EQ(h5.int_attr("/", "format_version"), 1);
+  EXPECT_EQ(h5.int_attr("/", "format_version"), 2);
   EXPECT_EQ(h5.int_attr("/", "step"), 7);
   EXPECT_EQ(h5.string_attr("/", "scene_hash"), "sha256:0f1e2d3c");
   EXPECT_EQ(h5.children("/"), (std::vector<std::string>{"integers", "scalars", "scene", "tables"}));
@@ -134,6 +135,8 @@ TEST(Checkpoint, LayoutIsTheDocumentedOne) {
   EXPECT_EQ(h5.int_attr("/tables/solid_node", "rows"), 5);
   EXPECT_EQ(h5.string_attr("/tables/solid_node/x", "type"), "f64");
   EXPECT_EQ(h5.int_attr("/tables/solid_node/x", "components"), 3);
+  EXPECT_EQ(h5.string_attr("/tables/solid_node/x", "fnv1a64").size(), 16u);
+  EXPECT_EQ(h5.string_attr("/", "meta_fnv1a64").size(), 16u);
   const H5DatasetInfo x = h5.info("/tables/solid_node/x");
   EXPECT_EQ(x.rows, 5u);
   EXPECT_EQ(x.components, 3);
@@ -202,15 +205,71 @@ TEST(Checkpoint, UnknownFormatVersionIsRefused) {
   const auto file = dir / "future.h5";
   {
     H5File h5(file, H5File::Mode::truncate);
-    h5.set_int_attr("/", "format_version", 2);
+    h5.set_int_attr("/", "format_version", 99);
   }
   Store store;
   const std::string msg = error_of([&] { read_checkpoint(file, store); });
-  EXPECT_NE(msg.find("format_version 2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("format_version 99"), std::string::npos) << msg;
   EXPECT_NE(msg.find(file.string()), std::string::npos) << msg;
 
   std::ofstream(dir / "text.h5") << "not a checkpoint";
   EXPECT_NE(error_of([&] { read_checkpoint(dir / "text.h5", store); }).find("text.h5"), std::string::npos);
+}
+
+TEST(Checkpoint, EveryChangedByteOfAColumnIsReported) {
+  // A flipped byte in a column's values would restore a different state without a word; the column's
+  // checksum makes both verify_checkpoint and read_checkpoint name the file and the column instead.
+  test::TempDir dir;
+  Store store;
+  build_schema(store);
+  fill(store);
+  const auto file = dir / "c.h5";
+  write_checkpoint(file, store, sample_meta(3));
+  const auto original = test::slurp(file);
+  for (const std::string column : {"solid_node.x", "solid_node.flags", "tet.nodes"}) {
+    const std::string dataset =
+        "/tables/" + column.substr(0, column.find('.')) + "/" + column.substr(column.find('.') + 1);
+    const uint64_t size = test::dataset_bytes(file, dataset).second;
+    ASSERT_GT(size, 0u);
+    for (uint64_t byte = 0; byte < size; ++byte) {
+      std::ofstream(file, std::ios::binary) << original;
+      test::flip_dataset_byte(file, dataset, byte);
+      const std::string verified = error_of([&] { verify_checkpoint(file); });
+      EXPECT_NE(verified.find("checkpoint " + file.string() + " is damaged: the data of column '" + column +
+                              "' does not match its checksum"),
+                std::string::npos)
+          << "byte " << byte << ": " << verified;
+      Store restored;
+      build_schema(restored);
+      const std::string read = error_of([&] { read_checkpoint(file, restored); });
+      EXPECT_NE(read.find("column '" + column + "' does not match its checksum"), std::string::npos) << read;
+    }
+  }
+  std::ofstream(file, std::ios::binary) << original;
+  Store restored;
+  build_schema(restored);
+  EXPECT_EQ(verify_checkpoint(file).step, 3);
+  EXPECT_EQ(read_checkpoint(file, restored).step, 3);
+  expect_same(store, restored);
+}
+
+TEST(Checkpoint, AChangedByteOfTheSceneIsReported) {
+  // The scene text, the clock, scalars and integers are covered by the metadata checksum.
+  test::TempDir dir;
+  Store store;
+  build_schema(store);
+  fill(store);
+  const auto file = dir / "c.h5";
+  write_checkpoint(file, store, sample_meta(3));
+  test::flip_dataset_byte(file, "/scene", 10);
+  const std::string msg = error_of([&] { verify_checkpoint(file); });
+  EXPECT_NE(msg.find("checkpoint " + file.string() + " is damaged: its metadata"), std::string::npos) << msg;
+  Store restored;
+  build_schema(restored);
+  fill(restored);
+  const std::string read = error_of([&] { read_checkpoint(file, restored); });
+  EXPECT_NE(read.find("is damaged: its metadata"), std::string::npos) << read;
+  expect_same(store, restored);  // refused before any column was touched
 }
 
 pid_t dead_pid() {
@@ -255,7 +314,16 @@ TEST(CheckpointSet, KeepsTheNewestAndFindsTheLatestReadable) {
   std::filesystem::resize_file(set.path_for(45), size / 2);
   std::ofstream(set.path_for(50)) << "garbage, not HDF5";
   std::filesystem::copy_file(good, set.dir() / "ckpt_0000000060.h5.tmp-1");
-  EXPECT_EQ(set.latest(), good);
+  std::filesystem::copy_file(good, set.path_for(55));
+  test::flip_dataset_byte(set.path_for(55), "/tables/tet/nodes", 5);
+  std::vector<CheckpointProblem> skipped;
+  EXPECT_EQ(set.latest(&skipped), good);
+  ASSERT_EQ(skipped.size(), 3u);
+  EXPECT_EQ(skipped[0].file, set.path_for(55));
+  EXPECT_NE(skipped[0].reason.find("column 'tet.nodes' does not match its checksum"), std::string::npos)
+      << skipped[0].reason;
+  EXPECT_EQ(skipped[1].file, set.path_for(50));
+  EXPECT_EQ(skipped[2].file, set.path_for(45));
 
   Store restored;
   build_schema(restored);
@@ -290,6 +358,46 @@ TEST(CheckpointSet, PruningLeavesTempNamesItDidNotWriteAlone) {
   EXPECT_TRUE(std::filesystem::exists(other_padding));
   EXPECT_FALSE(std::filesystem::exists(set.path_for(10)));
   EXPECT_EQ(set.latest(), set.path_for(20));
+}
+
+TEST(CheckpointSet, NeverFollowsALinkedFolderOrDeletesLinks) {
+  // A `checkpoints` link could lead writing and pruning out of the output folder: refused. Inside the
+  // real folder, a link with a checkpoint's name is not a checkpoint of ours and is never deleted.
+  test::TempDir dir;
+  Store store;
+  build_schema(store);
+  fill(store);
+  const auto elsewhere = dir / "elsewhere";
+  std::filesystem::create_directories(elsewhere);
+  const auto victim = elsewhere / "ckpt_0000000001.h5";
+  std::ofstream(victim) << "someone else's file";
+  std::filesystem::create_directories(dir / "out");
+  std::filesystem::create_directory_symlink(elsewhere, dir / "out" / "checkpoints");
+  const std::string msg = error_of([&] { CheckpointSet(dir / "out", 1); });
+  EXPECT_NE(msg.find("'" + (dir / "out" / "checkpoints").string() + "' is a symbolic link"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(test::slurp(victim), "someone else's file");
+
+  CheckpointSet set(dir / "run", 1);
+  std::filesystem::create_directories(set.dir());
+  std::filesystem::create_symlink(victim, set.path_for(2));
+  const std::string dead = std::to_string(dead_pid());
+  std::filesystem::create_symlink(victim, set.dir() / ("ckpt_0000000003.h5.tmp-" + dead));
+  for (int64_t step : {10, 20}) set.write(store, sample_meta(step));
+  EXPECT_TRUE(std::filesystem::is_symlink(set.path_for(2)));
+  EXPECT_TRUE(std::filesystem::is_symlink(set.dir() / ("ckpt_0000000003.h5.tmp-" + dead)));
+  EXPECT_EQ(test::slurp(victim), "someone else's file");
+  EXPECT_EQ(set.list().size(), 1u);
+  EXPECT_FALSE(std::filesystem::exists(set.path_for(10)));
+
+  // The folder replaced by a link while the run goes on: the next write refuses.
+  std::filesystem::rename(set.dir(), dir / "run" / "moved");
+  std::filesystem::create_directory_symlink(elsewhere, set.dir());
+  EXPECT_NE(error_of([&] { set.write(store, sample_meta(30)); }).find("is a symbolic link"),
+            std::string::npos);
+  EXPECT_EQ(test::slurp(victim), "someone else's file");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(elsewhere), {}), 1);
 }
 
 TEST(CheckpointSet, KeepMustBePositive) {

@@ -10,6 +10,7 @@
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
+#include "tests/unit/test_checkpoint_damage.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 
@@ -141,6 +142,59 @@ TEST(Run, RestartRefusesADamagedTimeSeriesAndLeavesTheFolderAlone) {
     EXPECT_TRUE(files_in(dir) == before) << "the refused restart changed " << dir;
   }
   fs::remove_all(dir);
+}
+
+TEST(Run, RestartFallsBackPastADamagedCheckpointAndRefusesWhenNoneIsIntact) {
+  // One changed byte in the newest checkpoint's values: the restart says which file and why, continues
+  // from the previous checkpoint and still ends bit for bit where a straight run ends.
+  const std::string path = std::string(RIFT_SOURCE_DIR) + "/scenes/examples/quickstart.yaml";
+  const Scene scene =
+      load_scene(path, {"time.end=2.0e-5", "output.interval=4.0e-6", "checkpoint.every_steps=4"});
+  const fs::path a = fresh_dir("fallback_straight"), b = fresh_dir("fallback_restarted");
+  const RunResult straight = run_scene(scene, a, 1);
+  ASSERT_TRUE(straight.completed);
+  run_scene(scene, b, 1, 10);
+  const fs::path newest = b / "checkpoints" / "ckpt_0000000010.h5";
+  const fs::path previous = b / "checkpoints" / "ckpt_0000000008.h5";
+  ASSERT_TRUE(fs::exists(newest));
+  ASSERT_TRUE(fs::exists(previous));
+  const std::string column = test::contiguous_column(newest);
+  test::flip_dataset_byte(newest, column, 3);
+
+  const RunResult resumed = run_scene(scene, b, 1, std::nullopt, true);
+  EXPECT_TRUE(resumed.completed);
+  EXPECT_EQ(hex64(resumed.state_hash), hex64(straight.state_hash));
+  const std::string log = test::slurp(b / "rift.log");
+  EXPECT_NE(log.find("[warning] --restart latest: skipping " + newest.string() + ": checkpoint " +
+                     newest.string() + " is damaged: the data of column"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("restarted from " + previous.string() + " at step 8"), std::string::npos) << log;
+
+  // Every checkpoint damaged: refused, each named with its reason, the folder left as it was.
+  const fs::path c = fresh_dir("fallback_none");
+  run_scene(scene, c, 1, 10);
+  const fs::path c_newest = c / "checkpoints" / "ckpt_0000000010.h5";
+  const fs::path c_previous = c / "checkpoints" / "ckpt_0000000008.h5";
+  test::flip_dataset_byte(c_newest, test::contiguous_column(c_newest), 0);
+  std::ofstream(c_previous, std::ios::binary | std::ios::trunc) << "cut";
+  const auto before = files_in(c);
+  RunOptions o;
+  o.out_dir = c;
+  o.progress = false;
+  o.restart_latest = true;
+  const std::string m = test::error_of([&] { Simulation(scene, o); });
+  EXPECT_NE(m.find("--restart latest: no intact checkpoint in " + (c / "checkpoints").string()),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("\n  " + c_newest.string() + ": checkpoint " + c_newest.string() + " is damaged"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("\n  " + c_previous.string() + ": HDF5 file"), std::string::npos) << m;
+  EXPECT_TRUE(files_in(c) == before) << "the refused restart changed " << c;
+  fs::remove_all(a);
+  fs::remove_all(b);
+  fs::remove_all(c);
 }
 
 TEST(Run, FractureZoneMaterialWithoutFracturePropertiesIsRefused) {

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "engine/core/error.hpp"
+#include "engine/core/fnv1a.hpp"
 #include "engine/mesh/block_assembly.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
@@ -36,8 +37,18 @@ double World::stable_dt() const {
   return dt;
 }
 
-TetMesh load_mesh(const MeshSpec& spec) {
-  if (spec.file) return read_msh(*spec.file, spec.scale);
+TetMesh load_mesh(const MeshSpec& spec, const std::string& section) {
+  if (spec.file) {
+    MshReadStats stats;
+    TetMesh mesh =
+        read_msh(*spec.file, spec.scale, &stats, {spec.max_file_bytes, section + ".max_file_bytes"});
+    // The scene's hash holds the file's content as it was when the scene was read; the mesh is built
+    // from exactly those bytes or not at all.
+    if (!spec.file_fnv1a64.empty() && hex16(stats.content_fnv1a64) != spec.file_fnv1a64)
+      throw Error(*spec.file + ": the mesh file changed after the scene was read (content hash " +
+                  spec.file_fnv1a64 + ", now " + hex16(stats.content_fnv1a64) + "); start the run again");
+    return mesh;
+  }
   if (spec.generate->shape == MeshGenerateSpec::Shape::blocks)
     return generate_block_assembly(spec.generate->blocks);
   if (spec.generate->cells) {
@@ -97,7 +108,7 @@ void add_coupled_fluid(World& world, const Scene& scene, MeshConversionModel* co
         std::make_unique<FluidMeshAdapter>(world.store, *conversion, *fluid.mesh->generate, *fluid.adapt);
     world.fluid_mesh = std::make_unique<TetMesh>(adapter->make());
   } else {
-    world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh));
+    world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh, "fluid.mesh"));
     order_along_curve(*world.fluid_mesh);
   }
   const char* F = fluid::tet_table;

@@ -26,6 +26,7 @@ struct World {
 
 // Reads or generates the mesh and builds the models. Throws rift::Error with a complete message.
 std::unique_ptr<World> build_world(const Scene& scene);
-TetMesh load_mesh(const MeshSpec& spec);
+// `section` names the spec's scene section in messages ("mesh", "fluid.mesh").
+TetMesh load_mesh(const MeshSpec& spec, const std::string& section = "mesh");
 
 }  // namespace rift

@@ -7,12 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <set>
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
+#include "engine/core/fnv1a.hpp"
 #include "engine/core/vec3.hpp"
 #include "engine/mesh/text_cursor.hpp"
 
@@ -78,7 +78,7 @@ class MshParser {
   TextCursor cur_;
   double scale_;
   int64_t max_records_;  // each record holds a number and a separator: bounds counts that size allocations
-  bool have_format_ = false, have_nodes_ = false, have_elements_ = false;
+  bool have_nodes_ = false, have_elements_ = false;
   std::map<std::pair<int, int>, std::string> physical_names_;      // (dim, physical tag) -> name
   std::unordered_map<int, std::vector<int>> entity_physicals_[4];  // per dim: entity tag -> physical tags
   std::vector<Vec3> nodes_;
@@ -104,10 +104,15 @@ void MshParser::expect_end(std::string_view end_marker) {
 }
 
 TetMesh MshParser::parse(MshReadStats* stats) {
+  // A path in a scene can name any file: one that is not a mesh at all is refused without a word of it.
+  const std::string_view first = cur_.token();
+  if (first != "$MeshFormat")
+    cur_.fail(
+        "a Gmsh MSH file, which starts with $MeshFormat",
+        first.empty() ? "an empty file" : "a file that does not (not a Gmsh mesh; its content is not shown)");
+  read_format();
   for (std::string_view section = cur_.token(); !section.empty(); section = cur_.token()) {
     if (section.front() != '$') cur_.fail("a section name such as $Nodes", TextCursor::describe(section));
-    if (!have_format_ && section != "$MeshFormat")
-      cur_.fail("$MeshFormat as the first section", TextCursor::describe(section));
     if (section == "$MeshFormat")
       read_format();
     else if (section == "$PhysicalNames")
@@ -127,7 +132,6 @@ TetMesh MshParser::parse(MshReadStats* stats) {
         cur_.fail_at(line, end + " closing " + std::string(section), "end of file");
     }
   }
-  if (!have_format_) cur_.fail("$MeshFormat", "end of file");
   if (!have_nodes_) cur_.fail("a $Nodes section", "end of file");
   if (!have_elements_) cur_.fail("an $Elements section", "end of file");
   return assemble(stats);
@@ -142,7 +146,6 @@ void MshParser::read_format() {
   const int64_t data_size = cur_.integer("data size");
   (void)data_size;  // only meaningful for binary files
   expect_end("$EndMeshFormat");
-  have_format_ = true;
 }
 
 void MshParser::read_physical_names() {
@@ -391,23 +394,14 @@ TetMesh MshParser::assemble(MshReadStats* stats) {
   return mesh;
 }
 
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(path + ": cannot open the mesh file (expected a readable Gmsh .msh file)");
-  std::string text(static_cast<size_t>(in.tellg()), '\0');
-  in.seekg(0);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (!in) throw Error(path + ": cannot read the mesh file");
-  return text;
-}
-
 }  // namespace
 
-TetMesh read_msh(const std::string& path, double scale, MshReadStats* stats) {
+TetMesh read_msh(const std::string& path, double scale, MshReadStats* stats, const InputFileLimit& limit) {
   if (!(scale > 0.0) || !std::isfinite(scale))
     throw Error(path + ": expected a positive mesh scale, found " + std::to_string(scale));
-  const std::string text = read_whole_file(path);
+  const std::string text = read_input_file(path, limit, "mesh file");
   MshReadStats local;
+  local.content_fnv1a64 = fnv1a64(text.data(), text.size());
   TetMesh mesh = MshParser(text, path, scale).parse(&local);
   if (stats) *stats = local;
   if (mesh.tets.empty()) {

@@ -15,14 +15,22 @@
 // Node tags may be sparse; nodes are renumbered densely in file order, and nodes that no tet uses are
 // dropped (a solid node without mass would break the physics).
 // Tets with negative orientation are flipped (nodes 1 and 2 swapped); a degenerate tet is an error.
+// The file is refused before it is read when it is no regular file or larger than the limit (the scene
+// key mesh.max_file_bytes, 2 GiB by default); a file that does not start with $MeshFormat is refused
+// without quoting any of it, and other errors quote at most the offending token.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "engine/io/input_file.hpp"
 #include "engine/mesh/tet_mesh.hpp"
 
 namespace rift {
+
+// 2 GiB of MSH text is some 20 million tets; reading it takes several times that in memory.
+inline constexpr uint64_t msh_default_max_bytes = uint64_t{2} << 30;
 
 // What read_msh did besides building the mesh, for the log.
 struct MshReadStats {
@@ -32,11 +40,13 @@ struct MshReadStats {
   size_t flipped_tets = 0;                               // negative orientation in the file, fixed
   size_t triangles_without_surface = 0;                  // triangles in no physical surface, dropped
   std::vector<std::pair<int, size_t>> skipped_elements;  // Gmsh element type -> count, by type
+  uint64_t content_fnv1a64 = 0;                          // FNV-1a 64 of the bytes that were parsed
 };
 
 // Reads a Gmsh MSH 4.1 ASCII file; coordinates are multiplied by `scale` (1e-3 for a mesh in mm).
 // Throws rift::Error "path:line: expected ..., found ..." on anything malformed.
-TetMesh read_msh(const std::string& path, double scale = 1.0, MshReadStats* stats = nullptr);
+TetMesh read_msh(const std::string& path, double scale = 1.0, MshReadStats* stats = nullptr,
+                 const InputFileLimit& limit = {msh_default_max_bytes, "mesh.max_file_bytes"});
 
 // Writes `mesh` as MSH 4.1 ASCII: one physical volume per region, one physical surface per surface
 // name (tags 1, 2, ... in name order), coordinates in shortest round-trip form, so that read_msh gives

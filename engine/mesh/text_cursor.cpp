@@ -103,8 +103,12 @@ bool TextCursor::skip_past_line_starting(std::string_view marker) {
 
 std::string TextCursor::describe(std::string_view token) {
   if (token.empty()) return "end of file";
-  if (token.size() > 40) return "'" + std::string(token.substr(0, 40)) + "...'";
-  return "'" + std::string(token) + "'";
+  const bool cut = token.size() > 40;
+  std::string shown(token.substr(0, 40));
+  // Control characters of a binary file would reach the terminal as they are.
+  for (char& c : shown)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return "'" + shown + (cut ? "...'" : "'");
 }
 
 void TextCursor::fail(std::string_view expected, std::string_view found) const {

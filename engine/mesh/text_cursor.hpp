@@ -32,7 +32,8 @@ class TextCursor {
   // Throws rift::Error "path:line: expected <expected>, found <found>".
   [[noreturn]] void fail(std::string_view expected, std::string_view found) const;
   [[noreturn]] void fail_at(int line, std::string_view expected, std::string_view found) const;
-  // How a token reads in a message: 'tok', or "end of file" for the empty token.
+  // How a token reads in a message: 'tok' (its first 40 characters, control characters as '?'), or
+  // "end of file" for the empty token.
   static std::string describe(std::string_view token);
 
  private:

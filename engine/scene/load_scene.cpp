@@ -139,7 +139,7 @@ SceneLoadResult read_scene_text(const std::string& yaml, const std::string& file
   if (!result.errors.empty()) return result;
   scene.source_file = file_label;
   scene.resolved_yaml = emit_resolved_yaml(scene);
-  scene.hash = fnv1a64_hex(scene.resolved_yaml);
+  scene.hash = scene_hash(scene);
   result.scene = std::move(scene);
   return result;
 }

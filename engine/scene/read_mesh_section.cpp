@@ -2,6 +2,10 @@
 #include <cmath>
 #include <filesystem>
 
+#include "engine/core/error.hpp"
+#include "engine/core/fnv1a.hpp"
+#include "engine/io/input_file.hpp"
+#include "engine/mesh/msh_reader.hpp"
 #include "engine/scene/number_text.hpp"
 #include "engine/scene/scene_sections.hpp"
 
@@ -198,9 +202,22 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
     else
       sec.context().error(sec.where(), sec.path(), expected, "neither");
   }
+  mesh.max_file_bytes = static_cast<uint64_t>(
+      sec.integer("max_file_bytes", IntRule{1, INT64_MAX}, static_cast<int64_t>(msh_default_max_bytes)));
   if (has_file) {
     std::string file = sec.string("file", std::nullopt);
     if (sec.ok("file")) mesh.file = resolve_mesh_file(sec, file, base_dir);
+    // The content is part of the scene's hash: a restart refuses a mesh file replaced at the same path.
+    if (sec.ok("file") && sec.ok("max_file_bytes")) {
+      try {
+        const InputFileLimit limit{mesh.max_file_bytes, sec.key_path("max_file_bytes")};
+        mesh.file_fnv1a64 = hex16(hash_input_file(*mesh.file, limit, "mesh file"));
+      } catch (const Error& e) {
+        sec.error("file",
+                  "a readable Gmsh MSH 4.1 file of at most " + sec.key_path("max_file_bytes") + " bytes",
+                  e.what());
+      }
+    }
   } else {
     sec.declare("file");
   }

@@ -104,6 +104,7 @@ void emit_mesh(Lines& o, const MeshSpec& m, int indent = 0) {
   o.line(i, "mesh");
   if (m.file) o.line(i + 1, "file", quoted(*m.file));
   o.line(i + 1, "scale", yaml_real(m.scale));
+  if (m.file) o.line(i + 1, "max_file_bytes", std::to_string(m.max_file_bytes));
   if (!m.generate) return;
   const MeshGenerateSpec& g = *m.generate;
   o.line(i + 1, "generate");
@@ -370,6 +371,14 @@ std::string emit_resolved_yaml(const Scene& scene) {
 
 std::string fnv1a64_hex(std::string_view text) {
   return hex16(fnv1a64(text.data(), text.size()));
+}
+
+std::string scene_hash(const Scene& scene) {
+  std::string text = scene.resolved_yaml;
+  if (scene.mesh.file) text += "# mesh.file content fnv1a64 " + scene.mesh.file_fnv1a64 + "\n";
+  if (scene.fluid && scene.fluid->mesh && scene.fluid->mesh->file)
+    text += "# fluid.mesh.file content fnv1a64 " + scene.fluid->mesh->file_fnv1a64 + "\n";
+  return fnv1a64_hex(text);
 }
 
 }  // namespace rift

@@ -14,4 +14,9 @@ std::string emit_resolved_yaml(const Scene& scene);
 // FNV-1a 64 of `text` as 16 lowercase hex digits. Identifies a resolved scene; not a security hash.
 std::string fnv1a64_hex(std::string_view text);
 
+// Scene::hash: fnv1a64_hex of the resolved YAML followed by a line per mesh file with the FNV-1a 64 of
+// its bytes, so a scene whose mesh file changed at the same path hashes differently. The same as
+// fnv1a64_hex(resolved_yaml) for a scene without mesh files.
+std::string scene_hash(const Scene& scene);
+
 }  // namespace rift

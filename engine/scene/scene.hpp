@@ -63,6 +63,8 @@ struct MeshSpec {
   std::optional<std::string> file;           // Gmsh MSH 4.1 ASCII, path resolved against the scene's folder
   std::optional<MeshGenerateSpec> generate;  // exactly one of file / generate
   double scale = 1.0;                        // multiplies file coordinates (1e-3 for a mesh drawn in mm)
+  uint64_t max_file_bytes = uint64_t{2} << 30;  // a larger file is refused before it is read
+  std::string file_fnv1a64;  // FNV-1a 64 of the file's bytes when the scene was read (16 hex digits)
 };
 
 // Joint (cohesive) properties of a material: the Munjiza law with Mohr-Coulomb and a tension cut-off
@@ -338,7 +340,9 @@ struct Scene {
   CheckpointSpec checkpoint;
   std::vector<ReferenceMetricSpec> reference;  // empty: the scene names no error metrics
   std::string resolved_yaml;                   // the complete scene (defaults filled, overrides applied)
-  std::string hash;  // FNV-1a 64 of resolved_yaml, 16 hex digits (stable across runs)
+  // FNV-1a 64 of resolved_yaml followed by the content hash of every mesh file it names, 16 hex digits
+  // (stable across runs): a mesh file replaced at the same path makes another scene.
+  std::string hash;
 };
 
 }  // namespace rift

@@ -1,7 +1,9 @@
 // Gmsh MSH 4.1 reader and writer, on small files the test writes itself.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -166,6 +168,16 @@ void expect_error(const std::string& name, const std::string& text, const std::s
   }
 }
 
+// The message of the rift::Error `call` throws, or "no error".
+std::string test_error(auto&& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   const size_t pos = text.find(from);
   EXPECT_NE(pos, std::string::npos) << from;
@@ -208,6 +220,65 @@ TEST(MshReader, RejectsNonNumericTokenAndDegenerateTet) {
 TEST(MshReader, RejectsUnterminatedUnknownSection) {
   const std::string text = replace(kCube, "$EndNodeData\n", "");
   expect_error("unterminated.msh", text, "$NodeData", "$EndNodeData");
+}
+
+TEST(MshReader, AFileThatIsNoMeshIsRefusedWithoutQuotingIt) {
+  // mesh.file may name any file (a typo, /etc/passwd): the message must not carry its content.
+  for (const std::string& text :
+       {std::string("root:x:0:0:first-word second-word\nsecond-line:x:1:1\n"),
+        std::string("alpha beta gamma\ndelta\n"), std::string("\x1b[2Jsecret\tword\n")}) {
+    const std::string path = write_file("not_a_mesh.msh", text);
+    std::string message;
+    try {
+      read_msh(path);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message, path +
+                           ":1: expected a Gmsh MSH file, which starts with $MeshFormat, found a file that "
+                           "does not (not a Gmsh mesh; its content is not shown)");
+    for (const char* word :
+         {"root", "first-word", "second-word", "second-line", "alpha", "beta", "delta", "secret", "\x1b"})
+      EXPECT_EQ(message.find(word), std::string::npos) << message;
+  }
+}
+
+TEST(MshReader, AFileAboveTheLimitIsRefusedBeforeItIsRead) {
+  // A sparse 3 GiB file reads as 3 GiB of zeros: refused from its size alone, at once.
+  const fs::path huge = temp_folder() / "huge.msh";
+  { std::ofstream(huge, std::ios::binary) << "$MeshFormat\n"; }
+  fs::resize_file(huge, uint64_t{3} << 30);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string message;
+  try {
+    read_msh(huge.string());
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
+  EXPECT_EQ(message,
+            huge.string() +
+                ": the mesh file is 3221225472 bytes, above the limit of 2147483648 bytes (raise it with "
+                "mesh.max_file_bytes)");
+  fs::remove(huge);
+
+  // The limit is the caller's; a file within it reads.
+  const std::string cube = write_file("limit.msh", kCube);
+  EXPECT_NE(test_error([&] {
+              read_msh(cube, 1.0, nullptr, {100, "fluid.mesh.max_file_bytes"});
+            }).find("bytes, above the limit of 100 bytes (raise it with fluid.mesh.max_file_bytes)"),
+            std::string::npos);
+  EXPECT_EQ(read_msh(cube, 1.0, nullptr, {kCube.size(), "mesh.max_file_bytes"}).tets.size(), 3u);
+
+  // Not a regular file: refused without reading (a FIFO would block, /dev/zero never ends).
+  const fs::path fifo = temp_folder() / "fifo.msh";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string path : {fifo.string(), std::string("/dev/zero"), temp_folder().string()})
+    EXPECT_NE(test_error([&] { read_msh(path); }).find(path + ": the mesh file is not a regular file"),
+              std::string::npos)
+        << path;
+  fs::remove(fifo);
 }
 
 TEST(MshWriter, RoundTripGivesTheSameMesh) {

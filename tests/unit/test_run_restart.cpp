@@ -197,6 +197,46 @@ TEST(Run, RestartFallsBackPastADamagedCheckpointAndRefusesWhenNoneIsIntact) {
   fs::remove_all(c);
 }
 
+TEST(Run, RestartRefusesAMeshFileReplacedAtTheSamePath) {
+  // The scene hash covers the mesh file's bytes: a restart on another mesh under the same name is another
+  // scene, refused like a changed key, and the folder stays as it was.
+  const fs::path dir = fresh_dir("replaced_mesh");
+  fs::create_directories(dir / "in");
+  const std::string source = std::string(RIFT_SOURCE_DIR) + "/scenes/validation/";
+  fs::copy_file(source + "single_joint_mode_I.yaml", dir / "in" / "scene.yaml");
+  fs::copy_file(source + "two_tets.msh", dir / "in" / "two_tets.msh");
+  const std::vector<std::string> shorter{"time.end=2.0e-5"};
+  const fs::path out = dir / "out";
+  run_scene(load_scene((dir / "in" / "scene.yaml").string(), shorter), out, 1, 20);
+  const std::string original = test::slurp(dir / "in" / "two_tets.msh");
+  std::ofstream(dir / "in" / "two_tets.msh", std::ios::binary)
+      << original << "$Comments\nreplaced\n$EndComments\n";
+  const Scene replaced = load_scene((dir / "in" / "scene.yaml").string(), shorter);
+  const auto before = files_in(out);
+  RunOptions o;
+  o.out_dir = out;
+  o.progress = false;
+  o.restart_latest = true;
+  const std::string m = test::error_of([&] { Simulation(replaced, o); });
+  EXPECT_NE(m.find("was written for scene hash"), std::string::npos) << m;
+  EXPECT_NE(m.find("this scene resolves to " + replaced.hash), std::string::npos) << m;
+  EXPECT_TRUE(files_in(out) == before) << "the refused restart changed " << out;
+
+  // Changed between reading the scene and building the world: the mesh is not built from other bytes
+  // than the hash says.
+  o.out_dir = dir / "other";
+  o.restart_latest = false;
+  std::ofstream(dir / "in" / "two_tets.msh", std::ios::binary) << original;
+  EXPECT_NE(
+      test::error_of([&] { Simulation(replaced, o); }).find("the mesh file changed after the scene was read"),
+      std::string::npos);
+
+  const RunResult resumed =
+      run_scene(load_scene((dir / "in" / "scene.yaml").string(), shorter), out, 1, {}, true);
+  EXPECT_TRUE(resumed.completed);
+  fs::remove_all(dir);
+}
+
 TEST(Run, FractureZoneMaterialWithoutFracturePropertiesIsRefused) {
   Scene scene = load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/patch_uniaxial.yaml", {});
   scene.solid->materials[0].fracture.reset();

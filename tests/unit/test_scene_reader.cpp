@@ -437,6 +437,40 @@ TEST_F(SceneMeshFile, MissingFileNamesTheResolvedPath) {
   EXPECT_NE(r.errors[0].hint.find((dir_ / "nope.msh").string()), std::string::npos) << r.errors[0].format();
 }
 
+TEST_F(SceneMeshFile, TheHashCoversTheMeshFileContent) {
+  // The same path with other bytes is another scene: a restart must not continue on a replaced mesh.
+  const std::string scene = (dir_ / "scene.yaml").string();
+  const std::string first = read_scene_file(scene).scene->hash;
+  std::ofstream(dir_ / "meshes" / "bar.msh")
+      << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Comments\nx\n$EndComments\n";
+  const SceneLoadResult changed = read_scene_file(scene);
+  ASSERT_TRUE(changed.scene);
+  EXPECT_NE(changed.scene->hash, first);
+  EXPECT_NE(changed.scene->hash, fnv1a64_hex(changed.scene->resolved_yaml));
+  EXPECT_EQ(changed.scene->resolved_yaml, read_scene_file(scene).scene->resolved_yaml)
+      << "the YAML is the same";
+  std::ofstream(dir_ / "meshes" / "bar.msh") << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  EXPECT_EQ(read_scene_file(scene).scene->hash, first);
+  // A scene without mesh files hashes its resolved YAML alone.
+  const Scene generated = read_ok(kMinimal);
+  EXPECT_EQ(generated.hash, fnv1a64_hex(generated.resolved_yaml));
+}
+
+TEST_F(SceneMeshFile, AFileAboveMaxFileBytesIsAnErrorOfMeshFile) {
+  SceneLoadResult r = read_scene_file((dir_ / "scene.yaml").string(), {"mesh.max_file_bytes=10"});
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].key_path, "mesh.file");
+  EXPECT_NE(r.errors[0].hint.find("the mesh file is 35 bytes, above the limit of 10 bytes (raise it with "
+                                  "mesh.max_file_bytes)"),
+            std::string::npos)
+      << r.errors[0].format();
+  const SceneLoadResult ok = read_scene_file((dir_ / "scene.yaml").string(), {"mesh.max_file_bytes=35"});
+  ASSERT_TRUE(ok.scene);
+  EXPECT_EQ(ok.scene->mesh.max_file_bytes, 35u);
+  EXPECT_NE(ok.scene->resolved_yaml.find("  max_file_bytes: 35\n"), std::string::npos)
+      << ok.scene->resolved_yaml;
+}
+
 TEST(SceneFile, MalformedYamlAndExtraDocumentsAreOneDiagnostic) {
   SceneDiagnostic syntax = read_one_error("scene:\n  name: [a\ntime: {end: 1}\n");
   EXPECT_EQ(syntax.expected, "well-formed YAML");

@@ -1,6 +1,7 @@
 // Gmsh MSH 4.1 ASCII reader. Layout reference: the "MSH file format" chapter of the Gmsh manual.
 // One pass over the file held in memory; every record is parsed once, node tags are mapped through a
-// dense array (or a hash map when tags are very sparse), so the cost is O(file size).
+// dense array (or a hash map when tags are very sparse) and physical tags through hash maps, so the cost
+// is O(file size) however many physical groups the file has.
 #include "engine/mesh/msh_reader.hpp"
 
 #include <fmt/format.h>
@@ -324,10 +325,12 @@ std::vector<std::pair<int, std::string>> physical_groups(
   return groups;
 }
 
-int32_t index_of(const std::vector<std::pair<int, std::string>>& groups, int tag) {
-  for (size_t i = 0; i < groups.size(); ++i)
-    if (groups[i].first == tag) return static_cast<int32_t>(i);
-  return -1;
+// Physical tag -> index into `groups`.
+std::unordered_map<int, int32_t> index_by_tag(const std::vector<std::pair<int, std::string>>& groups) {
+  std::unordered_map<int, int32_t> index;
+  index.reserve(groups.size());
+  for (size_t i = 0; i < groups.size(); ++i) index.emplace(groups[i].first, static_cast<int32_t>(i));
+  return index;
 }
 
 TetMesh MshParser::assemble(MshReadStats* stats) {
@@ -335,22 +338,31 @@ TetMesh MshParser::assemble(MshReadStats* stats) {
   // Regions: physical volumes by tag, then "domain" for tets in none.
   const auto volumes = physical_groups(3, physical_names_, entity_physicals_[3]);
   for (const auto& [tag, name] : volumes) mesh.region_names.push_back(name);
+  const auto volume_index = index_by_tag(volumes);
   std::unordered_map<int, int32_t> entity_region;  // volume entity -> region index
   for (const auto& [entity, physicals] : entity_physicals_[3])
-    entity_region[entity] = index_of(volumes, physicals.front());
+    entity_region[entity] = volume_index.at(physicals.front());
   mesh.tet_region.reserve(tets_.size());
+  int32_t domain = -1;
   for (const int entity : tet_entity_) {
     const auto it = entity_region.find(entity);
     if (it != entity_region.end()) {
       mesh.tet_region.push_back(it->second);
       continue;
     }
-    if (mesh.region_index("domain") < 0) mesh.region_names.push_back("domain");
-    mesh.tet_region.push_back(mesh.region_index("domain"));
+    if (domain < 0) {
+      domain = mesh.region_index("domain");
+      if (domain < 0) {
+        domain = static_cast<int32_t>(mesh.region_names.size());
+        mesh.region_names.push_back("domain");
+      }
+    }
+    mesh.tet_region.push_back(domain);
   }
   // Surfaces: physical surfaces by tag; a triangle is listed once per physical surface of its entity.
   const auto surfaces = physical_groups(2, physical_names_, entity_physicals_[2]);
   for (const auto& [tag, name] : surfaces) mesh.surface_names.push_back(name);
+  const auto surface_index = index_by_tag(surfaces);
   size_t unnamed = 0;
   for (size_t i = 0; i < triangles_.size(); ++i) {
     const auto it = entity_physicals_[2].find(triangle_entity_[i]);
@@ -360,7 +372,7 @@ TetMesh MshParser::assemble(MshReadStats* stats) {
     }
     for (const int physical : it->second) {
       mesh.triangles.push_back(triangles_[i]);
-      mesh.triangle_surface.push_back(index_of(surfaces, physical));
+      mesh.triangle_surface.push_back(surface_index.at(physical));
     }
   }
   // Keep only nodes that tets use, in file order.

@@ -188,6 +188,24 @@ TEST(Cli, RestartFromADamagedTimeSeriesIsRefused) {
   EXPECT_EQ(test::slurp(out / "timeseries.csv"), text);
 }
 
+TEST(Cli, RestartWithNoIntactCheckpointIsBadInputNamingThem) {
+  test::TempDir dir;
+  const fs::path out = dir / "out";
+  const CliResult first = rift(quick_run(out, {"--stop-after", "5", "--set", "checkpoint.every_steps=2"}));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  std::vector<fs::path> checkpoints;
+  for (const auto& e : fs::directory_iterator(out / "checkpoints")) checkpoints.push_back(e.path());
+  ASSERT_EQ(checkpoints.size(), 2u);
+  for (const auto& c : checkpoints) fs::resize_file(c, fs::file_size(c) / 2);
+  const CliResult r = rift(quick_run(out, {"--restart", "latest", "--set", "checkpoint.every_steps=2"}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--restart latest: no intact checkpoint in " + (out / "checkpoints").string()),
+            std::string::npos)
+      << r.output;
+  for (const auto& c : checkpoints)
+    EXPECT_NE(r.output.find("  " + c.string() + ": "), std::string::npos) << r.output;
+}
+
 TEST(Cli, StrayCheckpointTempFilesAreLeftAlone) {
   test::TempDir dir;
   const fs::path out = dir / "out";

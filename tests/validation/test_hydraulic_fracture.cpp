@@ -102,6 +102,69 @@ TEST(HydraulicFracture, SneddonByInjectionStiffAndSoftFluid) {
   EXPECT_LT(sneddon_pressure(1.0e7) / sneddon_pressure(2.2e9), 0.93);
 }
 
+// KGD in the toughness regime (scenes/validation/kgd_toughness.yaml: zero viscosity, K = infinity): the
+// fluid breaks the starter crack down and drives it along y = 0. Half-length (the wet network's extent),
+// mouth opening and well pressure against the closed form l = 0.9324 (E' Q0 t / K')^(2/3), w0 = 0.6828
+// (K'^2 Q0 t / E'^2)^(1/3), p = 0.1831 (K'^4 / (E' Q0 t))^(1/3), at three times after breakdown (0.025 s).
+// The crack grows one joint (0.125 m) at a time and the pressure dips after each break, so each is the
+// mean of the ratio measured / closed form over the 10 ms before that time. Bound 10 % (the issue's):
+// the cohesive zone (l_ch = 4 elements) puts the wet tip ahead of the LEFM tip, the linear tets stiffen
+// the crack (Sneddon: w0 +1.2 %), the plate is finite. Measured at 8 elements per metre, at 0.05 / 0.075 /
+// 0.1 s: half-length +6.2 / +4.1 / +2.4 %, mouth opening +2.1 / +1.9 / +2.1 %, pressure +1.5 / -0.9 / -3.0 %
+// (docs/hydraulic-fracture.md has the refinement study).
+TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
+  const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 8.21e-4 / 0.0625;
+  const double times[3] = {0.05, 0.075, 0.1};
+  double sum[3][3] = {}, count[3] = {};
+  double worst_mass = 0.0, kinetic = 0.0, work = 0.0, balance = 0.0;
+  const Scene scene = validation_scene("kgd_toughness.yaml");
+  run_watching(scene, 2, [&](Simulation& sim) {
+    const double t = sim.time();
+    int window = -1;
+    for (int k = 0; k < 3; ++k)
+      if (t > times[k] - 0.01 && t <= times[k] + 1e-12) window = k;
+    const bool last = sim.step() == sim.total_steps();
+    if (window < 0 && !last && sim.step() % 64 != 0) return;
+    std::vector<std::pair<std::string, double>> row;
+    flow_of(sim).metrics(t, row);
+    const double injected = metric(row, "flow_injected_volume");
+    if (injected > 0)
+      worst_mass = std::max(worst_mass, std::abs(metric(row, "flow_mass_error")) / (1000.0 * injected));
+    if (last) {
+      validation::Metrics m(validation::solid_of(sim));
+      m.update(t);
+      kinetic = m["solid_kinetic_energy"];
+      work = m["solid_external_work"];
+      balance = m["solid_energy_balance_error"];
+    }
+    if (window < 0) return;
+    std::vector<XdmfGrid> grids;
+    flow_of(sim).output_grids(grids, {"aperture"});
+    const XdmfGrid& g = grids.at(0);
+    double best = INFINITY, w0 = 0.0;
+    for (size_t p = 0; p < g.point_count; ++p) {
+      const double d = std::abs(g.points[3 * p]) + std::abs(g.points[3 * p + 2] - 0.0625);
+      if (d < best) best = d, w0 = static_cast<const double*>(g.fields.at(0).data)[p];
+    }
+    const double q = kEp * Q0 * t;
+    sum[window][0] += metric(row, "flow_crack_extent") / (0.9324 * std::pow(q / Kp, 2.0 / 3.0));
+    sum[window][1] += w0 / (0.6828 * std::pow(Kp * Kp * Q0 * t / (kEp * kEp), 1.0 / 3.0));
+    sum[window][2] +=
+        metric(row, "flow_well_pressure") / (0.1831 * std::pow(Kp * Kp * Kp * Kp / q, 1.0 / 3.0));
+    count[window] += 1.0;
+  });
+  const char* names[3] = {"half-length", "mouth opening", "well pressure"};
+  for (int k = 0; k < 3; ++k)
+    for (int m = 0; m < 3; ++m) {
+      ASSERT_GT(count[k], 0.0);
+      const double ratio = sum[k][m] / count[k];
+      EXPECT_NEAR(ratio, 1.0, 0.10) << names[m] << " at t = " << times[k];
+    }
+  EXPECT_LT(worst_mass, 1e-12);
+  EXPECT_LT(kinetic, 0.01 * work);            // quasi-static growth
+  EXPECT_LT(std::abs(balance), 0.02 * work);  // the solid's energy balance
+}
+
 // A viscous fluid in the same crack, on a coarser mesh and a shorter run: the same bits on 1, 2 and 4
 // threads, and a run stopped half-way and restarted from its checkpoint ends on the same bits.
 TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {

@@ -36,6 +36,10 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f) {
   spec.well_compliance = well.real("well_compliance", non_negative("m^3/Pa"), 0.0);
   well.finish();
   spec.vent_pressure = f.optional_real("vent_pressure", any_real("Pa"));
+  if (f.has("vent_surfaces"))  // absent: every surface of the mesh
+    spec.vent_surfaces = f.string_list("vent_surfaces", {});
+  else
+    f.declare("vent_surfaces");
   spec.leak_off = f.real("leak_off", non_negative("m/s^0.5"), 0.0);
   spec.spurt = f.real("spurt", non_negative("m"), 0.0);
   f.finish();

@@ -321,6 +321,9 @@ void emit_fracture_flow(Lines& o, const FractureFlowSpec& f) {
   o.line(2, "well_volume", yaml_real(f.well_volume));
   o.line(2, "well_compliance", yaml_real(f.well_compliance));
   o.line(1, "vent_pressure", f.vent_pressure ? yaml_real(*f.vent_pressure) : "null");
+  std::string surfaces;
+  for (const auto& v : f.vent_surfaces) surfaces += (surfaces.empty() ? "" : ", ") + quoted(v);
+  o.line(1, "vent_surfaces", "[" + surfaces + "]");
   o.line(1, "leak_off", yaml_real(f.leak_off));
   o.line(1, "spurt", yaml_real(f.spurt));
 }

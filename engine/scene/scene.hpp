@@ -289,8 +289,10 @@ struct FractureFlowSpec {
   std::optional<TimeFunction> pressure;  // well pressure [Pa]
   double well_volume = 0.0;              // [m^3]: the borehole and line the injection fills first
   double well_compliance = 0.0;          // [m^3/Pa]: the line's and pump's compliance
-  // Crack vertices on the solid's outer surface hold this pressure and take what flows out (absent: sealed).
+  // Crack vertices on the named surfaces (all of the mesh's when empty) hold this pressure and take what
+  // flows out (absent: sealed).
   std::optional<double> vent_pressure;
+  std::vector<std::string> vent_surfaces;
   double leak_off = 0.0;  // Carter coefficient C_L [m/s^0.5]: each wet face loses C_L / sqrt(t - t_wet)
   double spurt = 0.0;     // [m]: volume per face area lost at wetting
 };

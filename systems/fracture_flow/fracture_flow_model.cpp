@@ -1,5 +1,8 @@
 #include "systems/fracture_flow/fracture_flow_model.hpp"
 
+#include <algorithm>
+
+#include "engine/core/error.hpp"
 #include "engine/scene/output_fields.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
 #include "systems/solid_model.hpp"
@@ -7,11 +10,24 @@
 namespace rift {
 
 namespace {
-// 1 per mesh vertex: on the mesh's outer surface (its boundary and named surface triangles).
-std::vector<uint8_t> boundary_vertices(const TetMesh& mesh) {
+// 1 per mesh vertex: on one of the vent surfaces (every surface of the mesh when none is named). A
+// plane-strain slab names its open faces, so that the faces that close the slab do not vent.
+std::vector<uint8_t> vent_vertices(const TetMesh& mesh, const std::vector<std::string>& names) {
+  std::vector<uint8_t> chosen(mesh.surface_names.size(), names.empty() ? 1 : 0);
+  for (const auto& name : names) {
+    const auto it = std::find(mesh.surface_names.begin(), mesh.surface_names.end(), name);
+    if (it == mesh.surface_names.end()) {
+      std::string known;
+      for (const auto& s : mesh.surface_names) known += (known.empty() ? "" : ", ") + s;
+      throw Error("fracture_flow.vent_surfaces: no surface '" + name + "' in the mesh (it has: " + known +
+                  ")");
+    }
+    chosen[size_t(it - mesh.surface_names.begin())] = 1;
+  }
   std::vector<uint8_t> on(mesh.nodes.size(), 0);
-  for (const auto& t : mesh.triangles)
-    for (int32_t v : t) on[size_t(v)] = 1;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    if (chosen[size_t(mesh.triangle_surface[t])])
+      for (int32_t v : mesh.triangles[t]) on[size_t(v)] = 1;
   return on;
 }
 }  // namespace
@@ -20,8 +36,8 @@ FractureFlowModel::FractureFlowModel(Store& store, SolidModel& solid, const TetM
                                      const FractureFlowSpec& spec)
     : store_(store), spec_(spec) {
   solid.accept_crack_fluid_forces();
-  system_ =
-      std::make_unique<FractureFlowSystem>(store, spec, solid.spec().mass_damping, boundary_vertices(mesh));
+  system_ = std::make_unique<FractureFlowSystem>(store, spec, solid.spec().mass_damping,
+                                                 vent_vertices(mesh, spec.vent_surfaces));
 }
 
 std::optional<std::string> FractureFlowModel::check_health(const StepContext&) {

@@ -18,7 +18,7 @@ using fracture_flow::books_table;
 using fracture_flow::vertex_table;
 
 FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
-                                       std::vector<uint8_t> boundary_vertex)
+                                       std::vector<uint8_t> vent_vertex)
     : store_(store),
       spec_(spec),
       eos_{spec.density, spec.reference_pressure, spec.bulk_modulus},
@@ -31,7 +31,7 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
   for (int32_t n : joint_nodes) vertices.push_back(node_vertex[size_t(n)]);
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  row_of_mesh_vertex_.assign(boundary_vertex.size(), -1);
+  row_of_mesh_vertex_.assign(vent_vertex.size(), -1);
   for (size_t r = 0; r < vertices.size(); ++r) row_of_mesh_vertex_[size_t(vertices[r])] = int32_t(r);
   Table& rows = store_.add_table(vertex_table);
   rows.add<int32_t>("mesh_vertex", 1);
@@ -47,8 +47,8 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
   std::fill(pressure.begin(), pressure.end(), spec_.lag_pressure);
   auto wetting = rows.span<double>("wetting_time");
   std::fill(wetting.begin(), wetting.end(), -1.0);
-  boundary_row_.resize(vertices.size());
-  for (size_t r = 0; r < vertices.size(); ++r) boundary_row_[r] = boundary_vertex[size_t(vertices[r])];
+  vent_row_.resize(vertices.size());
+  for (size_t r = 0; r < vertices.size(); ++r) vent_row_[r] = vent_vertex[size_t(vertices[r])];
   Table& books = store_.add_table(books_table);
   for (const char* c :
        {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work", "initial_mass"})
@@ -305,7 +305,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     role_[v] = role[r];
     wetting_[v] = wetting[r];
     exchanged_[v] = 0.0;
-    if (spec_.vent_pressure && boundary_row_[r] && r != well_row_) {
+    if (spec_.vent_pressure && vent_row_[r] && r != well_row_) {
       role_[v] = uint8_t(FlowRole::fixed);
       fixed_[v] = *spec_.vent_pressure;
     }

@@ -24,7 +24,7 @@ class FractureFlowSystem : public System {
   // mass_damping: the solid's (its factor enters the closure). Throws rift::Error (naming the scene key)
   // when the well's point is not at a crack vertex.
   FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
-                     std::vector<uint8_t> boundary_vertex);
+                     std::vector<uint8_t> vent_vertex);
   std::string name() const override { return "fracture_flow"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
@@ -62,7 +62,7 @@ class FractureFlowSystem : public System {
   FractureFlowSpec spec_;
   kernels::FluidEos eos_;
   TimeFunction mass_damping_;
-  std::vector<uint8_t> boundary_row_;  // 1 per vertex row: on the solid's outer surface
+  std::vector<uint8_t> vent_row_;  // 1 per vertex row: on a vent surface
   NetworkFlow flow_;
   std::vector<int32_t> row_of_mesh_vertex_;  // -1 where no joint touches the vertex
   size_t well_row_ = 0;

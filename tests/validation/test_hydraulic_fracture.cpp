@@ -165,6 +165,53 @@ TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
   EXPECT_LT(std::abs(balance), 0.02 * work);  // the solid's energy balance
 }
 
+// The same crack held at 1 MPa by a pressure-controlled well: it takes in Sneddon's volume
+// V = 2 pi p a^2 / E' (within the prescribed-pressure test's 5 %), and the well's pressure is the one given.
+TEST(HydraulicFracture, APressureControlledWellFillsSneddonsVolume) {
+  const Scene scene = validation_scene("sneddon_injection.yaml",
+                                       {"fracture_flow.injection={point: [0, 0, 0.0625], pressure: 1.0e6}"});
+  std::vector<std::pair<std::string, double>> row;
+  run_watching(scene, 2, [&](Simulation& sim) {
+    if (sim.step() != sim.total_steps()) return;
+    flow_of(sim).metrics(sim.time(), row);
+  });
+  EXPECT_EQ(metric(row, "flow_well_pressure"), 1.0e6);
+  const double volume = metric(row, "flow_crack_volume") * 16.0;  // both halves, per metre of crack
+  EXPECT_NEAR(volume / (2.0 * M_PI * 1.0e6 * kA * kA / kEp), 1.0, 0.05);
+  // The well gave what the crack holds, but for the fluid that filled the starter crack's floor aperture
+  // at t = 0 (1e-8 m over 0.125 m^2).
+  EXPECT_NEAR(metric(row, "flow_fluid_volume") - metric(row, "flow_injected_volume"), 1.25e-9, 1e-12);
+}
+
+// Carter leak-off from a crack wet since t = 0: each face loses C_L / sqrt(t) per unit area, so between t1
+// and t2 the crack of face area A loses 2 A 2 C_L (sqrt(t2) - sqrt(t1)). Measured from t1 = 5 ms, once the
+// injection has filled the crack (before, a vertex cannot lose more than it holds). The step integrates
+// C_L / sqrt(t) exactly; the leaked mass is counted at rho(p) and reported at rho0 (p / K_f < 5e-4).
+TEST(HydraulicFracture, LeakOffFollowsCarter) {
+  const double cl = 1.0e-4;
+  const Scene scene = validation_scene(
+      "sneddon_injection.yaml",
+      {"mesh.generate.cells=[40, 80, 1]", "solid.fracture.box_min=[-1, -0.225, -1]",
+       "solid.fracture.box_max=[1.25, 0.225, 1]", "fracture_flow.leak_off=" + std::to_string(cl)});
+  double t1 = -1.0, leaked1 = 0.0, worst = 0.0;
+  size_t samples = 0;
+  run_watching(scene, 2, [&](Simulation& sim) {
+    if (sim.time() < 0.005 || sim.step() % 250 != 0) return;
+    std::vector<std::pair<std::string, double>> row;
+    flow_of(sim).metrics(sim.time(), row);
+    const double leaked = metric(row, "flow_leaked_volume"), area = metric(row, "flow_crack_area");
+    if (t1 < 0) {
+      t1 = sim.time(), leaked1 = leaked;
+      return;
+    }
+    const double carter = 2.0 * area * 2.0 * cl * (std::sqrt(sim.time()) - std::sqrt(t1));
+    worst = std::max(worst, std::abs((leaked - leaked1) / carter - 1.0));
+    ++samples;
+  });
+  EXPECT_GT(samples, 10u);
+  EXPECT_LT(worst, 1e-3);
+}
+
 // A viscous fluid in the same crack, on a coarser mesh and a shorter run: the same bits on 1, 2 and 4
 // threads, and a run stopped half-way and restarted from its checkpoint ends on the same bits.
 TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {

@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "engine/core/error.hpp"
 #include "kernels/crack_pressure_closure.hpp"
@@ -387,16 +385,6 @@ void FractureFlowSystem::run(const StepContext& ctx) {
       kernels::apply_closure(closure, ctx.dt, damping_factor, felt_, now_, solid_nodes.span<double>("x"),
                              solid_nodes.span<double>("v"));
   store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
-  if (std::getenv("RIFT_FLOW_DEBUG") && ctx.step > 16430) {
-    double maxdp = 0, sv = 0, sc = 0;
-    for (size_t i = 0; i < node_.size(); ++i) maxdp = std::max(maxdp, std::abs(now_[i] - felt_[i]));
-    for (size_t v = 0; v < nv; ++v) {
-      sv += volume_[v];
-      sc += compliance_[v];
-    }
-    std::fprintf(stderr, "step %ld tri %zu p_w %.6g maxdp %.4g Vpred %.6g C %.4g Wcorr %.6g solve %d\n",
-                 (long)ctx.step, joints_.size(), pressure_[w], maxdp, sv, sc, correction_work, int(solve));
-  }
   auto force = solid_nodes.span<double>("crack_force");
   for (size_t i = 0; i < node_.size(); ++i) {
     felt_[i] = now_[i];
@@ -435,15 +423,18 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   const double in_total = books.span<double>("injected")[0], initial = books.span<double>("initial_mass")[0];
   const double expected =
       initial + in_total - books.span<double>("vented")[0] - books.span<double>("leaked")[0];
+  // 1e-12 of the mass involved, or, over a long run, the rounding of the additions to a vertex's mass (one
+  // part in 2^52 per step: a large well's mass takes each step's small injection rounded to its own ulp).
   const double scale = std::max({std::abs(total), std::abs(initial), std::abs(in_total)});
-  if (std::abs(total - expected) > 1e-12 * scale)
+  const double allowed = std::max(1e-12, double(ctx.step + 1) * 0x1p-52);
+  if (std::abs(total - expected) > allowed * scale)
     problem_ = fmt::format(
         "fracture_flow at t = {:.6g} s (step {}): the fluid's mass books do not close: the network holds "
         "{:.12g} kg "
         "but started with {:.12g}, took in {:.12g}, vented {:.12g} and leaked {:.12g} kg (relative error "
-        "{:.3g}, allowed 1e-12). This is a defect of the flow step; please report it with the scene.",
+        "{:.3g}, allowed {:.3g}). This is a defect of the flow step; please report it with the scene.",
         t_end, ctx.step, total, initial, in_total, books.span<double>("vented")[0],
-        books.span<double>("leaked")[0], std::abs(total - expected) / scale);
+        books.span<double>("leaked")[0], std::abs(total - expected) / scale, allowed);
 }
 
 // The work that compressed a unit mass from rho0 to rho(p), the integral of p d(1 / rho) along the

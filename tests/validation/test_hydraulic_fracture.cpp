@@ -212,6 +212,26 @@ TEST(HydraulicFracture, LeakOffFollowsCarter) {
   EXPECT_LT(worst, 1e-3);
 }
 
+// The example a new user runs (scenes/examples/hydraulic_fracture.yaml), for its first 2 ms: the well's
+// pressure rises to breakdown (above the 1 MPa the least stress holds the crack shut with) and falls
+// while the crack grows past its starter radius (0.025 m, 0.028 m to the farthest vertex).
+TEST(HydraulicFracture, TheExampleBreaksDownAndGrows) {
+  const Scene scene = load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/examples/hydraulic_fracture.yaml",
+                                 {"time.end=2.0e-3"});
+  double peak = 0.0, last = 0.0, extent = 0.0;
+  run_watching(scene, 2, [&](Simulation& sim) {
+    if (sim.step() % 100 != 0 && sim.step() != sim.total_steps()) return;
+    std::vector<std::pair<std::string, double>> row;
+    flow_of(sim).metrics(sim.time(), row);
+    last = metric(row, "flow_well_pressure");
+    peak = std::max(peak, last);
+    extent = metric(row, "flow_crack_extent");
+  });
+  EXPECT_GT(peak, 5.0e6);
+  EXPECT_LT(last, 0.9 * peak);
+  EXPECT_GT(extent, 0.035);
+}
+
 // A viscous fluid in the same crack, on a coarser mesh and a shorter run: the same bits on 1, 2 and 4
 // threads, and a run stopped half-way and restarted from its checkpoint ends on the same bits.
 TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {

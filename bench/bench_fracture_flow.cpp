@@ -4,7 +4,7 @@
 // the fluxes and the roles. The budget: at most 25 % of the jointed solid step at 1e5 tets (about
 // 9 ms on 2 threads, docs/performance.md) for a network of 1e4 faces. Items are triangle-steps. The step is
 // serial (its sums must not depend on the thread count); the factorisation dominates, so it is not
-// bandwidth-bound and items/s is the figure. Argument: triangles (1e3 when tiny).
+// bandwidth-bound and items/s is the figure. Arguments: triangles (1e3 when tiny), solver.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -63,7 +63,8 @@ void BM_FractureFlowStep(benchmark::State& state) {
   const size_t wanted = rift::bench::tiny() ? 1000 : size_t(state.range(0));
   PlanarNetwork net = make_network(wanted);
   const size_t nv = net.volume.size(), nt = net.tri.size() / 3;
-  rift::NetworkFlow flow({1000.0, 0.0, 2.2e9}, 1e-3, 0.0);
+  const auto solver = state.range(1) ? rift::NetworkSolver::cg : rift::NetworkSolver::direct;
+  rift::NetworkFlow flow({1000.0, 0.0, 2.2e9}, 1e-3, 0.0, solver);
   flow.set_network(net.tri, nv);
   rift::NetworkFlowBooks books;
   double t = 0.0;
@@ -78,8 +79,10 @@ void BM_FractureFlowStep(benchmark::State& state) {
   }
   state.counters["triangles"] = double(nt);
   state.counters["vertices"] = double(nv);
+  state.counters["cg_iterations"] = double(flow.cg_iterations());
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(nt));
 }
-BENCHMARK(BM_FractureFlowStep)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+// Arguments: triangles, solver (0 the LDLT factorisation, 1 incomplete-Cholesky CG from the last pressure).
+BENCHMARK(BM_FractureFlowStep)->ArgsProduct({{1000, 10000, 100000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -1,4 +1,7 @@
 // fracture_flow: the fluid in the cracks (docs/scene-format.md, docs/hydraulic-fracture.md).
+#include <array>
+#include <string_view>
+
 #include "engine/scene/scene_sections.hpp"
 
 namespace rift {
@@ -13,6 +16,8 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f) {
   spec.lag_pressure = f.real("lag_pressure", any_real("Pa"), 0.0);
   spec.initial_pressure = f.real("initial_pressure", any_real("Pa"), 0.0);
   spec.interval = f.integer("interval", IntRule{1, 1000000}, 1);
+  static constexpr std::array<std::string_view, 3> kSolvers{"automatic", "direct", "cg"};
+  spec.solver = int(f.choice("solver", kSolvers, 0));
   spec.wet_damage = f.real("wet_damage", RealRule{"", 0.0, 1.0, true, false}, 1.0);
   if (f.ok("lag_pressure") && f.ok("bulk_modulus") && f.ok("reference_pressure") &&
       !(spec.lag_pressure > spec.reference_pressure - spec.bulk_modulus))

@@ -314,6 +314,8 @@ void emit_fracture_flow(Lines& o, const FractureFlowSpec& f) {
   o.line(1, "initial_pressure", yaml_real(f.initial_pressure));
   o.line(1, "interval", std::to_string(f.interval));
   o.line(1, "wet_damage", yaml_real(f.wet_damage));
+  static constexpr const char* kSolvers[] = {"automatic", "direct", "cg"};
+  o.line(1, "solver", kSolvers[f.solver]);
   o.line(1, "injection");
   o.line(2, "point", vec3(f.point));
   if (f.rate) emit_time_function(o, 2, "rate", *f.rate);

@@ -283,6 +283,9 @@ struct FractureFlowSpec {
   // A joint joins the network when its damage (the largest D_max of its points) reaches this: 1, only
   // broken joints; below 1, the fluid also enters the process zone ahead of the crack.
   double wet_damage = 1.0;
+  // The pressure solve: 0 automatic (factorisation below 2000 network vertices, CG above), 1 the
+  // factorisation, 2 conjugate gradients (systems/fracture_flow/network_flow.hpp).
+  int solver = 0;
   // The well: the crack vertex nearest `point` (within an element of it), given extra storage.
   std::array<double, 3> point{};
   std::optional<TimeFunction> rate;      // injected volume rate at rho0 [m^3/s] (one of rate, pressure)

@@ -21,7 +21,7 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
       spec_(spec),
       eos_{spec.density, spec.reference_pressure, spec.bulk_modulus},
       mass_damping_(std::move(mass_damping)),
-      flow_(eos_, spec.viscosity, spec.lag_pressure) {
+      flow_(eos_, spec.viscosity, spec.lag_pressure, NetworkSolver(spec.solver)) {
   // One row per mesh vertex that a joint touches, in vertex order.
   const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
   const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");

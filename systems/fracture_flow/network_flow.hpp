@@ -117,6 +117,8 @@ class NetworkFlow {
   std::vector<double> transmissibility_, edge_density_;
   std::vector<double> new_pressure_;
   std::vector<int32_t> component_;
+  std::vector<double> part_mass_, part_v0_, part_compliance_;  // zero-viscosity mode, per component
+  std::vector<int64_t> part_fixed_;
   std::vector<double> compliance_;  // per vertex, this step: the input's, or the open one once closing
   double volume_at(const NetworkFlowStepInput& in, size_t v, double p) const {
     return in.volume[v] + compliance_[v] * (p - in.applied[v]);

@@ -29,7 +29,7 @@ class InputFd {
     max_ = limit.max_bytes;
     if (size_ > max_)
       fail("the " + what_ + " is " + std::to_string(size_) + " bytes, above the limit of " +
-           std::to_string(max_) + " bytes (raise it with " + limit.key + ")");
+           std::to_string(max_) + " bytes" + (limit.key.empty() ? "" : " (raise it with " + limit.key + ")"));
   }
   InputFd(const InputFd&) = delete;
   InputFd& operator=(const InputFd&) = delete;

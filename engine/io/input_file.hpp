@@ -12,7 +12,7 @@ namespace rift {
 
 struct InputFileLimit {
   uint64_t max_bytes;
-  std::string key;  // the scene key that raises it, for the message ("mesh.max_file_bytes")
+  std::string key;  // the scene key that raises it, for the message ("mesh.max_file_bytes"); "" for none
 };
 
 // The whole file. Throws rift::Error "<path>: cannot ... <what>" / "<what> is N bytes, above ...";

@@ -1,12 +1,10 @@
 #include "engine/scene/load_scene.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "engine/core/error.hpp"
+#include "engine/io/input_file.hpp"
 #include "engine/scene/resolved_yaml.hpp"
 #include "engine/scene/scene_overrides.hpp"
 #include "engine/scene/scene_sections.hpp"
@@ -145,16 +143,19 @@ SceneLoadResult read_scene_text(const std::string& yaml, const std::string& file
 }
 
 SceneLoadResult read_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string text;
+  try {
+    text = read_input_file(path, InputFileLimit{scene_file_max_bytes, ""}, "scene file");
+  } catch (const Error& e) {
+    // The message starts with the path, which the diagnostic names already.
+    std::string found = e.what();
+    if (found.rfind(path + ": ", 0) == 0) found.erase(0, path.size() + 2);
     SceneLoadResult result;
-    result.errors.push_back({path, 0, 0, "", "a readable scene file", std::strerror(errno), ""});
+    result.errors.push_back({path, 0, 0, "", "a readable scene file", found, ""});
     return result;
   }
-  std::stringstream text;
-  text << in.rdbuf();
   const std::string base_dir = std::filesystem::path(path).parent_path().string();
-  return read_scene_text(text.str(), path, base_dir, overrides);
+  return read_scene_text(text, path, base_dir, overrides);
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {

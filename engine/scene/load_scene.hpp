@@ -1,5 +1,6 @@
 #pragma once
 // Reading a scene file into a checked, completed Scene. The format is in docs/scene-format.md.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,8 +18,13 @@ struct SceneLoadResult {
   std::vector<std::string> consumed_keys;
 };
 
-// Reads `path`, applies `overrides` ("key.path=value", list items as materials[0].density), checks
-// every key and fills defaults. Collects all errors instead of stopping at the first.
+// A scene is hand-written YAML of a few kilobytes; a larger file (or a device such as /dev/zero, a FIFO)
+// is refused before it is parsed, so that no input can make the reader exhaust memory.
+inline constexpr uint64_t scene_file_max_bytes = 4u << 20;
+
+// Reads `path` (a regular file of at most scene_file_max_bytes), applies `overrides` ("key.path=value", list
+// items as materials[0].density), checks every key and fills defaults. Collects all errors instead of
+// stopping at the first.
 SceneLoadResult read_scene_file(const std::string& path, const std::vector<std::string>& overrides = {});
 
 // The same for YAML text: `file_label` names it in diagnostics and becomes Scene::source_file;

@@ -61,6 +61,18 @@ TEST(Cli, SetIndexOutOfRangeIsBadInput) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// A device named as the scene is refused at once (read whole, /dev/zero would exhaust memory).
+TEST(Cli, ADeviceAsTheSceneIsBadInput) {
+  test::TempDir dir;
+  const CliResult r = rift({"run", "/dev/zero", "--out", (dir / "out").string(), "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(
+      r.output.find("/dev/zero: expected a readable scene file, found the scene file is not a regular file"),
+      std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 TEST(Cli, OutputFolderThatIsARegularFileIsRefused) {
   test::TempDir dir;
   const fs::path file = dir / "somefile";

@@ -486,5 +486,29 @@ TEST(SceneFile, UnreadableFileIsADiagnostic) {
   EXPECT_EQ(r.errors[0].expected, "a readable scene file");
 }
 
+// A device or a file far larger than any scene is refused before it is read whole or parsed.
+TEST(SceneFile, ADeviceIsRefusedWithoutReadingIt) {
+  SceneLoadResult r = read_scene_file("/dev/zero");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].expected, "a readable scene file");
+  EXPECT_NE(r.errors[0].found.find("not a regular file"), std::string::npos) << r.errors[0].format();
+}
+
+TEST(SceneFile, AFileAboveTheSizeLimitIsRefused) {
+  const auto path = std::filesystem::temp_directory_path() / ("rift_big_scene_" + std::to_string(::getpid()));
+  {
+    std::ofstream out(path);
+    const std::string line = "# a comment line that pads the file\n";
+    for (uint64_t n = 0; n <= scene_file_max_bytes / line.size(); ++n) out << line;
+  }
+  SceneLoadResult r = read_scene_file(path.string());
+  std::filesystem::remove(path);
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].file, path.string());
+  EXPECT_NE(r.errors[0].found.find("above the limit of " + std::to_string(scene_file_max_bytes) + " bytes"),
+            std::string::npos)
+      << r.errors[0].format();
+}
+
 }  // namespace
 }  // namespace rift

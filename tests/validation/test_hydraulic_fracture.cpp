@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <functional>
 
 #include "engine/core/state_hash.hpp"
 #include "systems/fracture_flow/fracture_flow_model.hpp"
@@ -117,12 +119,33 @@ struct KgdResult {
   double worst_mass = 0.0, kinetic = 0.0, work = 0.0, balance = 0.0;
 };
 
-KgdResult run_kgd(const std::vector<std::string>& overrides) {
-  const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 8.21e-4 / 0.0625;
+// A closed form of the KGD crack at time t: half-length, mouth opening and net pressure at the well.
+struct KgdClosedForm {
+  double length, opening, net_pressure;
+};
+using KgdVertex = std::function<KgdClosedForm(double t)>;
+
+// The toughness vertex of kgd_toughness.yaml (K' = 4 sqrt(2 / pi) K_Ic, Q0 per unit thickness, whole crack).
+KgdClosedForm toughness_vertex(double t) {
+  const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 8.21e-4 / 0.0625, q = kEp * Q0 * t;
+  return {0.9324 * std::pow(q / Kp, 2.0 / 3.0), 0.6828 * std::pow(Kp * Kp * Q0 * t / (kEp * kEp), 1.0 / 3.0),
+          0.1831 * std::pow(Kp * Kp * Kp * Kp / q, 1.0 / 3.0)};
+}
+
+// The viscosity vertex of kgd_viscous.yaml (mu' = 12 mu; Adachi and Detournay 2002, as GEOS states it).
+KgdClosedForm viscosity_vertex(double t) {
+  const double mup = 12.0 * 4.0e-3, Q0 = 6.568e-3 / 0.0625;
+  const double w0 = 1.134 * std::pow(mup * Q0 * Q0 * Q0 * t * t / kEp, 1.0 / 6.0);
+  return {0.6152 * std::pow(kEp * Q0 * Q0 * Q0 / mup, 1.0 / 6.0) * std::pow(t, 2.0 / 3.0), w0,
+          0.62 * std::sqrt(mup * Q0 * kEp) / w0};
+}
+
+KgdResult run_kgd(const std::string& file, const std::vector<std::string>& overrides, const KgdVertex& vertex,
+                  double confinement = 0.0) {
   const double times[3] = {0.05, 0.075, 0.1};
   double sum[3][3] = {}, count[3] = {};
   KgdResult r;
-  const Scene scene = validation_scene("kgd_toughness.yaml", overrides);
+  const Scene scene = validation_scene(file, overrides);
   run_watching(scene, 2, [&](Simulation& sim) {
     const double t = sim.time();
     int window = -1;
@@ -151,11 +174,10 @@ KgdResult run_kgd(const std::vector<std::string>& overrides) {
       const double d = std::abs(g.points[3 * p]) + std::abs(g.points[3 * p + 2] - 0.0625);
       if (d < best) best = d, w0 = static_cast<const double*>(g.fields.at(0).data)[p];
     }
-    const double q = kEp * Q0 * t;
-    sum[window][0] += metric(row, "flow_crack_extent") / (0.9324 * std::pow(q / Kp, 2.0 / 3.0));
-    sum[window][1] += w0 / (0.6828 * std::pow(Kp * Kp * Q0 * t / (kEp * kEp), 1.0 / 3.0));
-    sum[window][2] +=
-        metric(row, "flow_well_pressure") / (0.1831 * std::pow(Kp * Kp * Kp * Kp / q, 1.0 / 3.0));
+    const KgdClosedForm exact = vertex(t);
+    sum[window][0] += metric(row, "flow_crack_extent") / exact.length;
+    sum[window][1] += w0 / exact.opening;
+    sum[window][2] += (metric(row, "flow_well_pressure") - confinement) / exact.net_pressure;
     count[window] += 1.0;
   });
   for (int k = 0; k < 3; ++k)
@@ -163,18 +185,22 @@ KgdResult run_kgd(const std::vector<std::string>& overrides) {
   return r;
 }
 
-void expect_kgd(const KgdResult& r) {
+void expect_kgd(const KgdResult& r, double bound = 0.10) {
   const char* names[3] = {"half-length", "mouth opening", "well pressure"};
   const double times[3] = {0.05, 0.075, 0.1};
-  for (int k = 0; k < 3; ++k)
-    for (int m = 0; m < 3; ++m) EXPECT_NEAR(r.ratio[k][m], 1.0, 0.10) << names[m] << " at t = " << times[k];
+  for (int k = 0; k < 3; ++k) {
+    std::printf("KGD at t = %.3f s: half-length %+.1f %%, mouth opening %+.1f %%, net pressure %+.1f %%\n",
+                times[k], 100.0 * (r.ratio[k][0] - 1.0), 100.0 * (r.ratio[k][1] - 1.0),
+                100.0 * (r.ratio[k][2] - 1.0));
+    for (int m = 0; m < 3; ++m) EXPECT_NEAR(r.ratio[k][m], 1.0, bound) << names[m] << " at t = " << times[k];
+  }
   EXPECT_LT(r.worst_mass, 1e-12);
   EXPECT_LT(r.kinetic, 0.01 * r.work);            // quasi-static growth
   EXPECT_LT(std::abs(r.balance), 0.02 * r.work);  // the solid's energy balance
 }
 
 TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
-  expect_kgd(run_kgd({}));
+  expect_kgd(run_kgd("kgd_toughness.yaml", {}, toughness_vertex));
 }
 
 // The same with a viscous fluid, mu = 1e-6 Pa s: K = K' / (E'^3 mu' Q0)^(1/4) = 4.8, still in the
@@ -182,7 +208,17 @@ TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
 // vertices (the closure's active set). Measured at 0.05 / 0.075 / 0.1 s: half-length +5.9 / +4.0 / +2.1 %,
 // mouth opening +2.8 / +2.6 / +2.7 %, pressure +3.6 / +0.8 / -1.4 %; the solid's balance -1.7 % of the work.
 TEST(HydraulicFracture, KgdWithAViscousFluidInTheToughnessRegime) {
-  expect_kgd(run_kgd({"fracture_flow.viscosity=1e-6"}));
+  expect_kgd(run_kgd("kgd_toughness.yaml", {"fracture_flow.viscosity=1e-6"}, toughness_vertex));
+}
+
+// KGD in the viscosity regime (scenes/validation/kgd_viscous.yaml: mu = 4 mPa s, K = 0.36, 3 MPa across
+// the crack plane, which closes the fluid lag the M-vertex assumes away): half-length, mouth opening and
+// net well pressure against the M-vertex at 0.05 / 0.075 / 0.1 s. Bound 15 % (the for this
+// regime): the starter crack (1 m, a third of the final length) is a memory the self-similar solution
+// does not have, the toughness left at K = 0.36 and the cohesive zone lengthen the crack and lower its
+// pressure, and the mesh is the toughness case's. Measured: see the scene's entry in docs/validation.md.
+TEST(HydraulicFracture, KgdViscosityDominatedFollowsTheMVertex) {
+  expect_kgd(run_kgd("kgd_viscous.yaml", {}, viscosity_vertex, 3.0e6), 0.15);
 }
 
 // The same crack held at 1 MPa by a pressure-controlled well: it takes in Sneddon's volume

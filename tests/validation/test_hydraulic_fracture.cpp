@@ -186,7 +186,7 @@ KgdResult run_kgd(const std::string& file, const std::vector<std::string>& overr
 }
 
 void expect_kgd(const KgdResult& r, double bound = 0.10) {
-  const char* names[3] = {"half-length", "mouth opening", "well pressure"};
+  const char* names[3] = {"half-length", "mouth opening", "net well pressure"};
   const double times[3] = {0.05, 0.075, 0.1};
   for (int k = 0; k < 3; ++k) {
     std::printf("KGD at t = %.3f s: half-length %+.1f %%, mouth opening %+.1f %%, net pressure %+.1f %%\n",
@@ -215,8 +215,9 @@ TEST(HydraulicFracture, KgdWithAViscousFluidInTheToughnessRegime) {
 // the crack plane, which closes the fluid lag the M-vertex assumes away): half-length, mouth opening and
 // net well pressure against the M-vertex at 0.05 / 0.075 / 0.1 s. Bound 15 % (the for this
 // regime): the starter crack (1 m, a third of the final length) is a memory the self-similar solution
-// does not have, the toughness left at K = 0.36 and the cohesive zone lengthen the crack and lower its
-// pressure, and the mesh is the toughness case's. Measured: see the scene's entry in docs/validation.md.
+// does not have, the measured extent counts the wet process zone, and the mesh is the toughness case's.
+// Measured: half-length +13.1 / +10.5 / +9.3 %, mouth opening -3.5 / -3.2 / -2.9 %, net pressure -6.8 /
+// -9.2 / -11.9 % (the length's error falls as the starter's memory fades; the pressure's grows).
 TEST(HydraulicFracture, KgdViscosityDominatedFollowsTheMVertex) {
   expect_kgd(run_kgd("kgd_viscous.yaml", {}, viscosity_vertex, 3.0e6), 0.15);
 }

@@ -12,6 +12,7 @@
 #include "engine/mesh/block_assembly.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
+#include "engine/mesh/element_estimate.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/mesh/spatial_order.hpp"
 #include "engine/mesh/structured_box.hpp"
@@ -49,6 +50,7 @@ TetMesh load_mesh(const MeshSpec& spec, const std::string& section) {
                   spec.file_fnv1a64 + ", now " + hex16(stats.content_fnv1a64) + "); start the run again");
     return mesh;
   }
+  check_lattice_budget(*spec.generate);
   if (spec.generate->shape == MeshGenerateSpec::Shape::blocks)
     return generate_block_assembly(spec.generate->blocks);
   if (spec.generate->cells) {

@@ -1,6 +1,8 @@
 // Box generator on CGAL Mesh_3 through polyhedral_mesher (see box_generator.hpp for the contract).
 #include "engine/mesh/box_generator.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -30,9 +32,20 @@ int32_t classify(const NotchedBox& box, const TetMesh& mesh, const std::array<in
     const double d = distance_to_notches(box, c, static_cast<int>(i));
     if (d < best_d) best_d = d, best = box.notch_surface[i];
   }
-  if (best < 0)
-    throw Error(
-        "mesh.generate: internal error, a boundary triangle lies on no box face and there is no notch");
+  if (best < 0) {
+    double off =
+        std::numeric_limits<double>::infinity();  // distance of the farthest node from the nearest face
+    for (int a = 0; a < 3; ++a)
+      for (const double plane : {box.lo[a], box.hi[a]}) {
+        double worst = 0;
+        for (const int32_t v : tri) worst = std::max(worst, std::abs(mesh.nodes[v][a] - plane));
+        off = std::min(off, worst);
+      }
+    throw Error(fmt::format(
+        "mesh.generate: internal error, a boundary triangle at ({:.9g}, {:.9g}, {:.9g}) lies on no box face "
+        "(its nodes are up to {:.3g} m off the nearest face plane) and there is no notch",
+        c[0], c[1], c[2], off));
+  }
   return best;
 }
 
@@ -46,6 +59,8 @@ TetMesh generate_box_mesh(const MeshGenerateSpec& spec, Mesh3Stats* stats) {
   in.feature_angle_deg = kFeatureAngleDeg;
   in.size = [&](const Vec3& p) { return mesh_size_at(spec, box, p); };
   in.seed = spec.seed;
+  in.max_tets = spec.max_elements;
+  in.max_tets_key = spec.max_elements_key;
   in.surface_names = box.surface_names;
   in.classify = [&](const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
     return classify(box, mesh, tri);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/box_faces.hpp"
 
 namespace rift {
 namespace {
@@ -54,6 +55,17 @@ void check_spec(const MeshGenerateSpec& spec) {
   if (!(spec.size_max >= spec.size_min) || !std::isfinite(spec.size_max))
     fail("size_max", "a length >= size_min (" + num(spec.size_min) + ")", spec.size_max);
   if (!(spec.grading >= 0) || !std::isfinite(spec.grading)) fail("grading", "a number >= 0", spec.grading);
+  // A loading arc shorter than one outline chord cannot be meshed at size_min: Mesh_3 protects its
+  // ends with balls no larger than the arc and refines around them without bound (an arc of 1e-12 deg
+  // ran for minutes).
+  const double shortest = spec.size_min / kChordDivisor;
+  const double arc = 0.5 * c.diameter * c.load_arc * kDeg;
+  if (arc < shortest)
+    throw Error(
+        "mesh.generate.cylinder.load_arc: expected an angle whose arc on the rim is at least size_min / " +
+        num(kChordDivisor) + " = " + num(shortest) +
+        " m, the shortest edge the outline carries (>= " + num(shortest / (0.5 * c.diameter) / kDeg) +
+        " deg), found " + num(c.load_arc) + " deg (an arc of " + num(arc) + " m)");
 }
 
 // The fewest equal facets over an arc of `span` rad with chords <= `chord` and angles <= kMaxFacetAngle.
@@ -69,17 +81,14 @@ int facets_for(double span, double chord, double radius) {
 }
 
 // Which named surface a boundary triangle lies on: a flat face when all three nodes are in its plane
-// (those coordinates come out of Mesh_3 exactly, the tolerance only guards round-off), otherwise the
-// curved side, split by the angle of the centroid. A triangle's nodes are on one patch and patches
-// meet at the arc ends, so the centroid's angle is strictly inside one patch's range: the test below
-// is never borderline.
+// (to within Mesh_3's inexact constructions, see box_faces.hpp; the side meets the flat faces at 90
+// degrees), otherwise the curved side, split by the angle of the centroid. A triangle's nodes are on one
+// patch and patches meet at the arc ends, so the centroid's angle is strictly inside one patch's range:
+// the test below is never borderline.
 int32_t classify(const DiscShape& disc, const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
-  const double tol = 1e-9 * std::max(2 * disc.radius, disc.z1 - disc.z0);
-  for (const auto& [z, surface] : {std::pair{disc.z0, kZmin}, std::pair{disc.z1, kZmax}}) {
-    bool in_plane = true;
-    for (const int32_t v : tri) in_plane = in_plane && std::abs(mesh.nodes[v][2] - z) <= tol;
-    if (in_plane) return surface;
-  }
+  const double tol = kOnPlaneFraction * longest_edge(mesh, tri);
+  for (const auto& [z, surface] : {std::pair{disc.z0, kZmin}, std::pair{disc.z1, kZmax}})
+    if (distance_from_plane(mesh, tri, 2, z) <= tol) return surface;
   double x = 0, y = 0;
   for (const int32_t v : tri) x += mesh.nodes[v][0] / 3, y += mesh.nodes[v][1] / 3;
   const double angle = std::atan2(y - disc.centre[1], x - disc.centre[0]);  // (-pi, pi]
@@ -186,6 +195,8 @@ TetMesh generate_cylinder_mesh(const MeshGenerateSpec& spec, Mesh3Stats* stats) 
   in.feature_angle_deg = kPatchFeatureAngleDeg;
   in.size = [&](const Vec3& p) { return disc_mesh_size_at(spec, disc, p); };
   in.seed = spec.seed;
+  in.max_tets = spec.max_elements;
+  in.max_tets_key = spec.max_elements_key;
   in.surface_names = {"load_top", "load_bottom", "side", "zmin", "zmax"};
   in.classify = [&](const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
     return classify(disc, mesh, tri);

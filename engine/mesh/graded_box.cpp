@@ -37,6 +37,8 @@ TetMesh generate_graded_box(const GradedBoxSpec& spec, std::span<const double> s
     return std::min(spec.size_max, spec.size_min + spec.grading * distance(p));
   };
   in.seed = spec.seed;
+  in.max_tets = spec.max_tets;
+  in.max_tets_key = spec.max_tets_key;
   in.surface_names = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
   in.classify = [&](const TetMesh& mesh, const std::array<int32_t, 3>& tri) {
     return classify(spec, mesh, tri);

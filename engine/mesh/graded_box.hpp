@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include "engine/mesh/polyhedral_mesher.hpp"
 #include "engine/mesh/tet_mesh.hpp"
@@ -21,6 +22,8 @@ struct GradedBoxSpec {
   double size_min = 0.1, size_max = 0.1;  // [m], 0 < size_min <= size_max
   double grading = 0.3;                   // > 0
   uint32_t seed = 1;
+  uint64_t max_tets = 0;  // 0: no bound (polyhedral_mesher.hpp); max_tets_key names the key that raises it
+  std::string max_tets_key;
 };
 
 // surface: 9 values (3 corners) per triangle, anywhere (outside the box too). Throws rift::Error for an

@@ -12,6 +12,7 @@
 #include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
 #include <CGAL/perturb_mesh_3.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +20,7 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/element_estimate.hpp"
 
 namespace rift {
 namespace {
@@ -205,6 +207,27 @@ void extract_triangles(const C3t3& c3t3, const PolyhedralMeshInput& in, TetMesh&
   }
 }
 
+double check_tet_budget(const PolyhedralMeshInput& in) {
+  const double budget = static_cast<double>(in.max_tets);
+  const TetEstimate e = estimate_mesh3_tets(in.patches, in.size, budget);
+  if (e.tets <= budget) return e.tets;
+  const std::string key = in.max_tets_key.empty() ? "the mesher's tet bound" : in.max_tets_key;
+  const std::string how =
+      fmt::format("estimated before meshing as the solid's volume over {} h^3 per tet, h the size field",
+                  kMesh3TetVolume);
+  const std::string advice = fmt::format(
+      "Use a larger size_min / size_max (the count scales as 1 / h^3), or raise {} to mesh it anyway", key);
+  if (e.lower_bound)
+    throw Error(
+        fmt::format("mesh.generate: the sizes ask for more tets than {} = {} ({}; the count passed "
+                    "the bound before the whole solid was counted), more than {:.3g} GB of memory. {}",
+                    key, in.max_tets, how, budget * kBytesPerTet / 1e9, advice));
+  throw Error(
+      fmt::format("mesh.generate: the sizes ask for about {:.3g} tets ({}), more than {} = {}; about "
+                  "{:.3g} GB of memory to mesh and run. {}",
+                  e.tets, how, key, in.max_tets, e.tets * kBytesPerTet / 1e9, advice));
+}
+
 }  // namespace
 
 PolyhedralSurface extruded_polygon(const std::vector<std::array<double, 2>>& polygon, double w0, double w1,
@@ -226,6 +249,7 @@ PolyhedralSurface extruded_polygon(const std::vector<std::array<double, 2>>& pol
 
 TetMesh mesh_polyhedron(const PolyhedralMeshInput& input, Mesh3Stats* stats) {
   Mesh3Stats local;
+  if (input.max_tets > 0) local.estimated_tets = check_tet_budget(input);
   const C3t3 c3t3 = [&] {
     try {
       return run_mesh_3(input, local);

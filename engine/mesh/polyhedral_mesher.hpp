@@ -56,6 +56,10 @@ struct PolyhedralMeshInput {
   double feature_angle_deg = 1.0;
   std::function<double(const Vec3&)> size;  // h(p) [m], see above
   uint32_t seed = 1;
+  // Meshing is refused, before it starts, when element_estimate.hpp expects more tets than this; the
+  // message names max_tets_key as the key that raises it. 0: no bound.
+  uint64_t max_tets = 0;
+  std::string max_tets_key;
   std::vector<std::string> surface_names;
   // Index into surface_names of a boundary triangle (outward, nodes of `mesh`).
   std::function<int32_t(const TetMesh& mesh, const std::array<int32_t, 3>& triangle)> classify;
@@ -64,10 +68,11 @@ struct PolyhedralMeshInput {
 // Wall-clock cost of the stages, for the log.
 struct Mesh3Stats {
   double refine_seconds = 0.0, perturb_seconds = 0.0, exude_seconds = 0.0;
-  bool exude_capped = false;  // exudation hit its step cap (see polyhedral_mesher.cpp)
+  bool exude_capped = false;    // exudation hit its step cap (see polyhedral_mesher.cpp)
+  double estimated_tets = 0.0;  // the estimate checked against max_tets (0 without a bound)
 };
 
-// Throws rift::Error if meshing produces no tets.
+// Throws rift::Error if the estimate passes max_tets or meshing produces no tets.
 TetMesh mesh_polyhedron(const PolyhedralMeshInput& input, Mesh3Stats* stats = nullptr);
 
 }  // namespace rift

@@ -222,8 +222,14 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
     sec.declare("file");
   }
   mesh.scale = sec.real("scale", positive(""), 1.0);
+  const auto max_elements = static_cast<uint64_t>(
+      sec.integer("max_elements", IntRule{1, INT64_MAX}, static_cast<int64_t>(kDefaultMaxElements)));
   MapReader generate = sec.section("generate", false);
-  if (has_generate) mesh.generate = read_generate(generate);
+  if (has_generate) {
+    mesh.generate = read_generate(generate);
+    mesh.generate->max_elements = max_elements;
+    mesh.generate->max_elements_key = sec.key_path("max_elements");
+  }
   sec.finish();
   return mesh;
 }

@@ -107,6 +107,7 @@ void emit_mesh(Lines& o, const MeshSpec& m, int indent = 0) {
   if (m.file) o.line(i + 1, "max_file_bytes", std::to_string(m.max_file_bytes));
   if (!m.generate) return;
   const MeshGenerateSpec& g = *m.generate;
+  o.line(i + 1, "max_elements", std::to_string(g.max_elements));
   o.line(i + 1, "generate");
   if (g.shape == MeshGenerateSpec::Shape::blocks) {
     o.line(i + 2, "blocks");

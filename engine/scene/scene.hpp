@@ -42,6 +42,9 @@ struct BlockSpec {
   std::array<int, 3> cells{1, 1, 1};
 };
 
+// 20 million tets: about 13 GB to mesh and run an unjointed solid, most of this machine class's memory.
+inline constexpr uint64_t kDefaultMaxElements = 20'000'000;
+
 struct MeshGenerateSpec {
   enum class Shape { box, cylinder, blocks };
   Shape shape = Shape::box;
@@ -57,6 +60,10 @@ struct MeshGenerateSpec {
   uint32_t seed = 1;               // generator seed: the same seed gives the same mesh
   // box only, instead of size_min/size_max: a structured Kuhn lattice of nx x ny x nz cells (6 tets each)
   std::optional<std::array<int, 3>> cells;
+  // The mesh section's max_elements and its key path: meshing is refused, before it starts, when it is
+  // expected to make more tets (element_estimate.hpp; a lattice's count is exact).
+  uint64_t max_elements = kDefaultMaxElements;
+  std::string max_elements_key = "mesh.max_elements";
 };
 
 struct MeshSpec {

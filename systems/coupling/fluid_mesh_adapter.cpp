@@ -25,6 +25,8 @@ FluidMeshAdapter::FluidMeshAdapter(const Store& store, MeshConversionModel& conv
   box_.size_max = box.size_max;
   box_.grading = box.grading;
   box_.seed = box.seed;
+  box_.max_tets = box.max_elements;
+  box_.max_tets_key = box.max_elements_key;
 }
 
 TetMesh FluidMeshAdapter::make() {

@@ -61,6 +61,17 @@ TEST(Cli, SetIndexOutOfRangeIsBadInput) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// Sizes that ask for billions of tets are refused in a second, before meshing and before any file.
+TEST(Cli, AMeshBeyondTheElementBudgetIsBadInput) {
+  test::TempDir dir;
+  const CliResult r = rift(quick_run(
+      dir / "out", {"--set", "mesh.generate.size_min=3e-5", "--set", "mesh.generate.size_max=3e-5"}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("the sizes ask for about 7.05e+09 tets"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("raise mesh.max_elements"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 // A device named as the scene is refused at once (read whole, /dev/zero would exhaust memory).
 TEST(Cli, ADeviceAsTheSceneIsBadInput) {
   test::TempDir dir;

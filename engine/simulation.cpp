@@ -1,9 +1,13 @@
 #include "engine/simulation.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <string_view>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
@@ -52,8 +56,23 @@ Simulation::Simulation(Scene scene, RunOptions options)
     open_log_file(options_.out_dir / "rift.log");
     write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
     series_ = std::make_unique<XdmfSeries>(options_.out_dir, "rift");
+    remove_killed_writers_files();
     if (options_.restart_latest) series_->resume(time());
   }
+}
+
+// A run killed while writing leaves "<output>.tmp-<pid>" files; the next run in the folder deletes those
+// of its own outputs (never checkpoints' here: CheckpointSet prunes its folder).
+void Simulation::remove_killed_writers_files() {
+  static constexpr std::string_view kRunFiles[] = {"scene.yaml", "timeseries.csv", "summary.json",
+                                                   "fractures.csv"};
+  const auto removed = remove_orphan_temp_files(options_.out_dir, [&](std::string_view name) {
+    return std::find(std::begin(kRunFiles), std::end(kRunFiles), name) != std::end(kRunFiles) ||
+           series_->is_own_file_name(name);
+  });
+  if (!removed.empty())
+    spdlog::warn("removed {} temporary file(s) a killed run left in {}: {}", removed.size(),
+                 options_.out_dir.string(), fmt::join(removed, ", "));
 }
 
 Simulation::~Simulation() {

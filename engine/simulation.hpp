@@ -66,6 +66,7 @@ class Simulation {
   void write_summary(const RunResult& result) const;
   void log_timing_table() const;
   void check_background_access();
+  void remove_killed_writers_files();
   void join_background();
   void join_background_quietly() noexcept;
 

@@ -1,9 +1,11 @@
 #include "engine/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <string>
 
@@ -78,6 +80,23 @@ std::filesystem::path AtomicPath::temp_for(const std::filesystem::path& target, 
   std::filesystem::path temp = target;
   temp += ".tmp-" + std::to_string(pid);
   return temp;
+}
+
+std::optional<AtomicPath::TempName> AtomicPath::parse_temp_name(std::string_view name) {
+  const size_t at = name.rfind(".tmp-");
+  if (at == std::string_view::npos || at == 0) return std::nullopt;
+  const char* first = name.data() + at + 5;
+  const char* last = name.data() + name.size();
+  pid_t pid = 0;
+  const auto [end, ec] = std::from_chars(first, last, pid);
+  if (ec != std::errc() || end != last || pid <= 0) return std::nullopt;
+  TempName parsed{std::string(name.substr(0, at)), pid};
+  if (temp_for(parsed.target, pid) != name) return std::nullopt;  // "+1", "01"
+  return parsed;
+}
+
+bool AtomicPath::writer_is_gone(pid_t pid) {
+  return pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH;
 }
 
 void write_text_atomic(const std::filesystem::path& path, std::string_view text) {

@@ -8,6 +8,8 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <string_view>
 
 namespace rift {
@@ -39,6 +41,16 @@ class AtomicPath {
   static bool is_temp_name(const std::filesystem::path& path);
   // The temporary file the process `pid` writes for `target`: exactly what temp() is in that process.
   static std::filesystem::path temp_for(const std::filesystem::path& target, pid_t pid);
+  // The target's file name and the writer's pid when `name` is exactly what temp_for makes ("x.tmp-12");
+  // nullopt for any other name ("x.tmp-", "x.tmp-+1", "x.tmp-012", "x.tmp-99999999999999999999").
+  struct TempName {
+    std::string target;
+    pid_t pid;
+  };
+  static std::optional<TempName> parse_temp_name(std::string_view name);
+  // The temp file of a process that no longer exists (kill(pid, 0) says ESRCH): a killed writer's
+  // leftover, safe to delete. False for this process and any live one.
+  static bool writer_is_gone(pid_t pid);
 
  private:
   std::filesystem::path target_;

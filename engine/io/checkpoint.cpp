@@ -298,29 +298,12 @@ int64_t step_of(const std::string& name) {
   return ec == std::errc() && end == last && checkpoint_name(step) == name ? step : -1;
 }
 
-// The writer's pid when `path` is exactly the temp file AtomicPath names for one of our checkpoints
-// ("ckpt_<step:010>.h5.tmp-<pid>"); nullopt for any other name, a pid part that is no pid included, so
+// One of our checkpoints' temp files ("ckpt_<step:010>.h5.tmp-<pid>", exactly as AtomicPath names it)
+// whose writer process is gone; any other name, our own temp files and live writers' are left alone, so
 // that pruning never touches a file some other program (or a person) put there.
-std::optional<pid_t> checkpoint_temp_writer(const std::filesystem::path& path) {
-  const std::string name = path.filename().string();
-  const size_t at = name.rfind(".tmp-");
-  if (at == std::string::npos) return std::nullopt;
-  const int64_t step = step_of(name.substr(0, at));
-  if (step < 0) return std::nullopt;
-  const char* first = name.data() + at + 5;
-  const char* last = name.data() + name.size();
-  pid_t pid = 0;
-  const auto [end, ec] = std::from_chars(first, last, pid);
-  if (ec != std::errc() || end != last || pid <= 0) return std::nullopt;
-  if (AtomicPath::temp_for(checkpoint_name(step), pid) != name) return std::nullopt;  // "+1", "01"
-  return pid;
-}
-
-// One of our checkpoint temp files whose writer process is gone (ESRCH); our own and live ones stay.
-bool is_orphan_temp(const std::filesystem::path& path) {
-  const std::optional<pid_t> pid = checkpoint_temp_writer(path);
-  if (!pid || *pid == ::getpid()) return false;
-  return ::kill(*pid, 0) != 0 && errno == ESRCH;
+bool is_orphan_temp(const std::string& name) {
+  const std::optional<AtomicPath::TempName> temp = AtomicPath::parse_temp_name(name);
+  return temp && step_of(temp->target) >= 0 && AtomicPath::writer_is_gone(temp->pid);
 }
 
 }  // namespace

@@ -1,6 +1,10 @@
 #pragma once
 // The output folder of a run or a sweep.
 #include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace rift {
 
@@ -8,5 +12,12 @@ namespace rift {
 // the folder and the reason when it is something else than a folder (a regular file, a path under a
 // regular file), cannot be created (e.g. under /proc) or cannot be written.
 void create_output_dir(const std::filesystem::path& dir);
+
+// Deletes the leftovers of killed writers in `dir` (not below it): regular files named
+// `<name>.tmp-<pid>` exactly as AtomicPath names its temp files, whose <name> `ours` recognises as one
+// of the run's outputs and whose writer process is gone. Links, other names, live writers' files and
+// this process's are left alone. Returns the names deleted, sorted.
+std::vector<std::string> remove_orphan_temp_files(const std::filesystem::path& dir,
+                                                  const std::function<bool(std::string_view name)>& ours);
 
 }  // namespace rift

@@ -59,6 +59,11 @@ std::filesystem::path XdmfSeries::sidecar_path() const {
   return dir_ / (basename_ + ".series.json");
 }
 
+bool XdmfSeries::is_own_file_name(std::string_view name) const {
+  if (name == basename_ + ".xdmf" || name == basename_ + ".series.json") return true;
+  return name.size() > basename_.size() + 4 && name.starts_with(basename_ + "_") && name.ends_with(".h5");
+}
+
 void XdmfSeries::check_grids(std::span<const XdmfGrid> grids) const {
   std::set<std::string> names;
   for (const XdmfGrid& g : grids) {

@@ -21,6 +21,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -73,6 +74,8 @@ class XdmfSeries {
   size_t entries() const { return entries_.size(); }
   std::filesystem::path index_path() const;    // dir/basename.xdmf
   std::filesystem::path sidecar_path() const;  // dir/basename.series.json
+  // A name this series writes: the index, the sidecar, or a data file "basename_<...>.h5".
+  bool is_own_file_name(std::string_view name) const;
 
   // Where one array lives: `file` is relative to the series directory.
   struct DataRef {

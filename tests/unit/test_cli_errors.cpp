@@ -229,6 +229,33 @@ TEST(Cli, RestartWithNoIntactCheckpointIsBadInputNamingThem) {
     EXPECT_NE(r.output.find("  " + c.string() + ": "), std::string::npos) << r.output;
 }
 
+// A killed run's temp files are deleted by the next run in the folder, when they are named after one
+// of its outputs and their writer is gone; a link, another name and a live writer's file stay.
+TEST(Cli, AKilledRunsTempFilesAreRemovedAndOnlyThose) {
+  test::TempDir dir;
+  const fs::path out = dir / "out";
+  fs::create_directories(out);
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);  // a pid that no longer runs
+  const std::string dead = std::to_string(child), live = std::to_string(::getpid());
+  const std::vector<std::string> orphans{"timeseries.csv.tmp-" + dead, "rift.xdmf.tmp-" + dead,
+                                         "rift_00000010.h5.tmp-" + dead, "summary.json.tmp-" + dead};
+  const std::vector<std::string> kept{"notes.txt.tmp-" + dead, "timeseries.csv.tmp-" + live,
+                                      "rift.xdmf.tmp-0" + dead, "scene.yaml.tmp-" + dead};
+  for (const auto& name : orphans) std::ofstream(out / name) << "torn";
+  for (const auto& name : kept) std::ofstream(out / name) << "not a killed run's";
+  std::ofstream(dir / "target") << "the link's target";
+  fs::remove(out / ("scene.yaml.tmp-" + dead));
+  fs::create_symlink(dir / "target", out / ("scene.yaml.tmp-" + dead));
+  const CliResult r = rift(quick_run(out));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& name : orphans) EXPECT_FALSE(fs::exists(out / name)) << name;
+  for (const auto& name : kept) EXPECT_TRUE(fs::is_symlink(out / name) || fs::exists(out / name)) << name;
+  EXPECT_EQ(test::slurp(dir / "target"), "the link's target");
+  EXPECT_NE(r.output.find("removed 4 temporary file(s) a killed run left"), std::string::npos) << r.output;
+}
+
 TEST(Cli, StrayCheckpointTempFilesAreLeftAlone) {
   test::TempDir dir;
   const fs::path out = dir / "out";

@@ -116,6 +116,17 @@ TEST(AtomicFile, TempNamesAreRecognised) {
   EXPECT_FALSE(AtomicPath::is_temp_name("x.tmp-12a"));
 }
 
+TEST(AtomicFile, TempNamesParseOnlyAsTheWriterMakesThem) {
+  const auto ok = AtomicPath::parse_temp_name("timeseries.csv.tmp-4242");
+  ASSERT_TRUE(ok.has_value());
+  EXPECT_EQ(ok->target, "timeseries.csv");
+  EXPECT_EQ(ok->pid, 4242);
+  for (const char* bad : {"timeseries.csv", "x.tmp-", "x.tmp-+1", "x.tmp-012", "x.tmp-0", "x.tmp--3",
+                          ".tmp-12", "x.tmp-99999999999999999999", "x.tmp-12a"})
+    EXPECT_FALSE(AtomicPath::parse_temp_name(bad).has_value()) << bad;
+  EXPECT_FALSE(AtomicPath::writer_is_gone(::getpid()));
+}
+
 TEST(RunSummary, DottedPathsBuildNestedObjects) {
   RunSummary summary;
   summary.set("scene.name", "notched_block");

@@ -4,8 +4,10 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -34,6 +36,18 @@ void fsync_path(const std::filesystem::path& path, int flags) {
   ::close(fd);
 }
 
+// Fault injection for the crash tests (tests/slow/test_faults.cpp, docs/reliability.md): with
+// RIFT_FAULT_KILL_AT_COMMIT=<n> in the environment the process kills itself with SIGKILL at its n-th
+// commit, the temp file written and synced, the rename not done: the moment a crash hurts most.
+void kill_here_if_asked() {
+  static const long kill_at = [] {
+    const char* value = std::getenv("RIFT_FAULT_KILL_AT_COMMIT");
+    return value ? std::strtol(value, nullptr, 10) : 0L;
+  }();
+  static std::atomic<long> commits{0};
+  if (kill_at > 0 && ++commits == kill_at) ::raise(SIGKILL);
+}
+
 }  // namespace
 
 AtomicPath::AtomicPath(std::filesystem::path target)
@@ -58,6 +72,7 @@ AtomicPath::~AtomicPath() {
 void AtomicPath::commit() {
   if (committed_) return;
   fsync_path(temp_, O_RDONLY | O_NOFOLLOW);
+  kill_here_if_asked();
   if (::rename(temp_.c_str(), target_.c_str()) != 0)
     throw Error("cannot rename '" + temp_.string() + "' to '" + target_.string() +
                 "': " + std::strerror(errno));

@@ -16,7 +16,12 @@ namespace {
 
 // HDF5 prints its error stack to stderr unless told not to. The setting lives on the calling
 // thread's default stack in thread-safe builds, hence once per thread.
+// Before the library's first use, it is also told not to clean up at exit: a file whose close failed
+// (disk full) stays in its table, and closing it again from the exit handler crashed the process
+// (SIGSEGV in H5F__close_cb) after the run had reported the error. The kernel closes the descriptors.
 void quiet() {
+  static const bool no_exit_cleanup = [] { return H5dont_atexit() >= 0; }();
+  (void)no_exit_cleanup;
   thread_local bool done = false;
   if (!done) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -36,6 +41,14 @@ std::string hdf5_detail() {
       },
       &detail);
   H5Eclear2(H5E_DEFAULT);
+  // A failed write's message runs over lines (time, file, descriptor, byte counts); its reason is the
+  // part "error message = '...'", e.g. 'No space left on device'.
+  const std::string reason_key = "error message = '";
+  if (const size_t at = detail.find(reason_key); at != std::string::npos) {
+    const size_t begin = at + reason_key.size(), end = detail.find('\'', begin);
+    if (end != std::string::npos) return "file write failed: " + detail.substr(begin, end - begin);
+  }
+  std::replace(detail.begin(), detail.end(), '\n', ' ');
   return detail;
 }
 

@@ -1,6 +1,9 @@
 #include "engine/scene/yaml_tree.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
+
+#include <sstream>
 
 namespace rift {
 namespace {
@@ -9,6 +12,35 @@ namespace {
 // has a few hundred nodes; these limits stop a hostile or broken file long before memory runs out.
 constexpr int kMaxDepth = 64;
 constexpr long kMaxNodes = 1'000'000;
+
+// The start of each document, for the first three at most. yaml-cpp 0.7 does not consume a ',' outside
+// a flow collection at document level: every HandleNextDocument then returns one more empty document at
+// the same place, and YAML::LoadAll loops until memory runs out (", a" as a scene took 24 GB). Counting
+// with a bound finds both a real second document and that stall.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+  }
+  void OnMapEnd() override {}
+};
+
+std::vector<YAML::Mark> document_starts(const std::string& text) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts handler;
+  for (int k = 0; k < 3 && parser.HandleNextDocument(handler); ++k) {
+  }
+  return handler.starts;
+}
 
 struct Converter {
   Converter(std::string label_, bool override_origin_)
@@ -82,9 +114,11 @@ SceneDiagnostic diagnostic_at(const SourceLocation& where, std::string key_path,
 YamlParseResult parse_yaml_tree(const std::string& text, const std::string& file_label,
                                 bool override_origin) {
   YamlParseResult result;
-  std::vector<YAML::Node> docs;
+  std::vector<YAML::Mark> starts;
+  YAML::Node doc;
   try {
-    docs = YAML::LoadAll(text);
+    starts = document_starts(text);
+    if (starts.size() == 1) doc = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     Converter c(file_label, override_origin);
     SourceLocation where = c.locate(e.mark, {file_label, 1, 1});
@@ -93,12 +127,14 @@ YamlParseResult parse_yaml_tree(const std::string& text, const std::string& file
   }
   Converter converter(file_label, override_origin);
   // A second document after "---" would otherwise be ignored without a word.
-  if (docs.size() > 1) {
-    result.error = diagnostic_at(converter.locate(docs[1].Mark(), {file_label, 1, 1}), "",
-                                 "a single YAML document", "a second document (after '---')");
+  if (starts.size() > 1) {
+    const bool stalled = starts[1].pos == starts[0].pos;
+    result.error = diagnostic_at(converter.locate(starts[1], {file_label, 1, 1}), "",
+                                 stalled ? "well-formed YAML" : "a single YAML document",
+                                 stalled ? "a syntax error: a ',' outside a flow list [..] or mapping {..}"
+                                         : "a second document (after '---')");
     return result;
   }
-  const YAML::Node doc = docs.empty() ? YAML::Node() : docs[0];
   result.root = converter.convert(doc, {file_label, override_origin ? 0 : 1, override_origin ? 0 : 1}, 0);
   result.error = converter.error;
   return result;

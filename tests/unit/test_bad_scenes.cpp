@@ -46,6 +46,8 @@ const std::vector<BadScene> kBadScenes = {
        "scenes/bad/does_not_exist.msh"}}},
     // The position is where yaml-cpp notices the list was never closed: the next line.
     {"malformed_yaml.yaml", {{13, 12, "", "well-formed YAML", "end of sequence flow not found", ""}}},
+    {"stray_comma.yaml",
+     {{3, 1, "", "well-formed YAML", "a syntax error: a ',' outside a flow list [..] or mapping {..}", ""}}},
     {"ill_formed_number.yaml",
      {{15, 14, "solid.materials[0].young", "a number in Pa", "'6.0e10.5', which is not a number", ""}}},
     {"file_and_generate.yaml", {{8, 3, "mesh", "exactly one of mesh.file or mesh.generate", "both", ""}}},

@@ -246,6 +246,14 @@ CheckpointMeta verify_checkpoint(const std::filesystem::path& file) {
     for (const auto& [column, c] : digest.columns) {
       const std::string dataset = table_group(table) + "/" + column;
       const H5DatasetInfo info = f.h5.info(dataset);
+      // The shape comes from HDF5's headers, which the checksums do not cover: it must be the one the
+      // checksummed description gives before anything is allocated for it.
+      if (static_cast<int64_t>(info.rows) != digest.rows || info.components != c.components ||
+          element_type_name(info.type) != c.type)
+        throw Error(damaged(file) + "column '" + table + "." + column + "' holds " +
+                    std::to_string(info.rows) + " rows of " + describe(info.type, info.components) +
+                    ", its description says " + std::to_string(digest.rows) + " rows of " + c.type + " x " +
+                    std::to_string(c.components));
       buffer.resize(info.rows * info.components * element_size(info.type));
       f.h5.read(dataset, info.type, buffer.data(), info.rows, info.components);
       check_column(f, table, column, buffer.data(), buffer.size());

@@ -17,6 +17,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/fnv1a.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/file_seal.hpp"
 #include "engine/io/hdf5_file.hpp"
 
 namespace rift {
@@ -93,6 +94,8 @@ struct CheckedFile {
 };
 
 CheckedFile open_checked(const std::filesystem::path& file) {
+  // HDF5 sees only the bytes that were written (file_seal.hpp says why).
+  check_file_seal(file, damaged(file));
   H5File h5(file, H5File::Mode::read);
   if (!h5.has_attr("/", "format_version"))
     throw Error("checkpoint " + file.string() + " is not a Rift checkpoint (no format_version attribute)");
@@ -200,7 +203,7 @@ std::vector<TablePlan> plan_restore(const H5File& h5, Store& store) {
 
 void write_checkpoint(const std::filesystem::path& file, const Store& store, const CheckpointMeta& meta) {
   AtomicPath atomic(file);
-  H5File h5(atomic.temp(), H5File::Mode::create);
+  H5File h5(atomic.temp(), H5File::Mode::create, kSealBytes);
   h5.set_int_attr("/", "format_version", checkpoint_format_version);
   h5.set_string_attr("/", "rift_version", meta.rift_version);
   h5.set_string_attr("/", "scene_hash", meta.scene_hash);
@@ -236,6 +239,7 @@ void write_checkpoint(const std::filesystem::path& file, const Store& store, con
   }
   h5.set_string_attr("/", "meta_fnv1a64", meta_checksum(meta, tables));
   h5.close();
+  seal_file(atomic.temp());
   atomic.commit();
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Checkpoints: the whole Store plus the run's clock and scene in one HDF5 file, written atomically.
 //
-// Layout (format_version 2):
+// Layout (format_version 3):
+//   bytes 0 - 511      the seal: FNV-1a 64 and length of the rest of the file (file_seal.hpp), checked
+//                      before HDF5 opens the file; HDF5's user block, so HDF5 itself skips it
 //   /                  attributes format_version, rift_version, scene_hash, step, time, dt, meta_fnv1a64
 //   /scene             string dataset: the resolved scene YAML the run was built from
 //   /scalars           group; one double attribute per entry of CheckpointMeta::scalars
@@ -12,7 +14,10 @@
 // Integrity: fnv1a64 (16 hex digits) is the FNV-1a 64 of a column's values as stored (little-endian);
 // meta_fnv1a64 covers everything else: the attributes above, the scene text, the scalars and integers,
 // every table's row count and every column's type, components and fnv1a64. A reader recomputes both,
-// so one changed byte anywhere in the data or the metadata is reported instead of restored.
+// so one changed byte anywhere in the data or the metadata is reported instead of restored. The seal
+// comes first: it finds a changed byte in HDF5's own structure too, before HDF5 parses it, and the
+// per-column sums then name the column when HDF5's structure is intact but a value is not (a file
+// resealed after the change, or written wrong).
 //
 // Restoring is strict: the run rebuilds its world from the scene first, so every table and column
 // must exist on both sides with the same type and component count. Values come back bit for bit
@@ -28,7 +33,7 @@
 
 namespace rift {
 
-inline constexpr int64_t checkpoint_format_version = 2;
+inline constexpr int64_t checkpoint_format_version = 3;
 
 struct CheckpointMeta {
   int64_t step = 0;

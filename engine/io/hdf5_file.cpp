@@ -181,7 +181,7 @@ Handle untimed(hid_t cls) {
 
 }  // namespace
 
-H5File::H5File(std::filesystem::path path, Mode mode) : path_(std::move(path)) {
+H5File::H5File(std::filesystem::path path, Mode mode, size_t user_block) : path_(std::move(path)) {
   quiet();
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   // Closing the file closes every object still open in it, so the file is complete on disk when
@@ -198,7 +198,10 @@ H5File::H5File(std::filesystem::path path, Mode mode) : path_(std::move(path)) {
     if (id_ < 0) h5_fail(path_, "", "cannot open for reading (not an HDF5 file, or truncated)");
   } else {
     const unsigned flags = mode == Mode::create ? H5F_ACC_EXCL : H5F_ACC_TRUNC;
-    id_ = H5Fcreate(path_.c_str(), flags, H5P_DEFAULT, fapl);
+    Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+    if (user_block > 0 && H5Pset_userblock(fcpl, user_block) < 0)
+      h5_fail(path_, "", "cannot reserve a user block of " + std::to_string(user_block) + " bytes");
+    id_ = H5Fcreate(path_.c_str(), flags, fcpl, fapl);
     if (id_ < 0)
       h5_fail(path_, "",
               mode == Mode::create ? "cannot create (something is at that path already)" : "cannot create");

@@ -37,7 +37,9 @@ class H5File {
   // (compression overhead outweighs the gain for a few kilobytes).
   static constexpr size_t compress_above_bytes = 64 * 1024;
 
-  H5File(std::filesystem::path path, Mode mode);
+  // user_block (create modes only): bytes reserved at the start of the file that HDF5 leaves alone,
+  // 0 or a power of two >= 512 (a checkpoint keeps its whole-file checksum there, file_seal.hpp).
+  H5File(std::filesystem::path path, Mode mode, size_t user_block = 0);
   H5File(const H5File&) = delete;
   H5File& operator=(const H5File&) = delete;
   H5File(H5File&& other) noexcept;

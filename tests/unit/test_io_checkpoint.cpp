@@ -11,6 +11,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/io/file_seal.hpp"
 #include "engine/io/hdf5_file.hpp"
 #include "tests/unit/test_checkpoint_damage.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
@@ -127,7 +128,7 @@ TEST(Checkpoint, LayoutIsTheDocumentedOne) {
   fill(store);
   write_checkpoint(dir / "c.h5", store, sample_meta(7));
   H5File h5(dir / "c.h5", H5File::Mode::read);
-  EXPECT_EQ(h5.int_attr("/", "format_version"), 2);
+  EXPECT_EQ(h5.int_attr("/", "format_version"), 3);
   EXPECT_EQ(h5.int_attr("/", "step"), 7);
   EXPECT_EQ(h5.string_attr("/", "scene_hash"), "sha256:0f1e2d3c");
   EXPECT_EQ(h5.children("/"), (std::vector<std::string>{"integers", "scalars", "scene", "tables"}));
@@ -204,9 +205,10 @@ TEST(Checkpoint, UnknownFormatVersionIsRefused) {
   test::TempDir dir;
   const auto file = dir / "future.h5";
   {
-    H5File h5(file, H5File::Mode::truncate);
+    H5File h5(file, H5File::Mode::truncate, kSealBytes);
     h5.set_int_attr("/", "format_version", 99);
   }
+  seal_file(file);  // an intact file of another format
   Store store;
   const std::string msg = error_of([&] { read_checkpoint(file, store); });
   EXPECT_NE(msg.find("format_version 99"), std::string::npos) << msg;
@@ -217,8 +219,9 @@ TEST(Checkpoint, UnknownFormatVersionIsRefused) {
 }
 
 TEST(Checkpoint, EveryChangedByteOfAColumnIsReported) {
-  // A flipped byte in a column's values would restore a different state without a word; the column's
-  // checksum makes both verify_checkpoint and read_checkpoint name the file and the column instead.
+  // A flipped byte in a column's values would restore a different state without a word. The file's seal
+  // finds it before HDF5 reads anything; resealed (the file written wrong rather than damaged later),
+  // the column's checksum makes both verify_checkpoint and read_checkpoint name the file and the column.
   test::TempDir dir;
   Store store;
   build_schema(store);
@@ -234,6 +237,11 @@ TEST(Checkpoint, EveryChangedByteOfAColumnIsReported) {
     for (uint64_t byte = 0; byte < size; ++byte) {
       std::ofstream(file, std::ios::binary) << original;
       test::flip_dataset_byte(file, dataset, byte);
+      const std::string unsealed = error_of([&] { verify_checkpoint(file); });
+      EXPECT_NE(unsealed.find("checkpoint " + file.string() + " is damaged: its bytes do not match its seal"),
+                std::string::npos)
+          << "byte " << byte << ": " << unsealed;
+      seal_file(file);
       const std::string verified = error_of([&] { verify_checkpoint(file); });
       EXPECT_NE(verified.find("checkpoint " + file.string() + " is damaged: the data of column '" + column +
                               "' does not match its checksum"),
@@ -262,6 +270,8 @@ TEST(Checkpoint, AChangedByteOfTheSceneIsReported) {
   const auto file = dir / "c.h5";
   write_checkpoint(file, store, sample_meta(3));
   test::flip_dataset_byte(file, "/scene", 10);
+  EXPECT_NE(error_of([&] { verify_checkpoint(file); }).find("do not match its seal"), std::string::npos);
+  seal_file(file);  // the metadata checksum still finds it
   const std::string msg = error_of([&] { verify_checkpoint(file); });
   EXPECT_NE(msg.find("checkpoint " + file.string() + " is damaged: its metadata"), std::string::npos) << msg;
   Store restored;
@@ -320,7 +330,7 @@ TEST(CheckpointSet, KeepsTheNewestAndFindsTheLatestReadable) {
   EXPECT_EQ(set.latest(&skipped), good);
   ASSERT_EQ(skipped.size(), 3u);
   EXPECT_EQ(skipped[0].file, set.path_for(55));
-  EXPECT_NE(skipped[0].reason.find("column 'tet.nodes' does not match its checksum"), std::string::npos)
+  EXPECT_NE(skipped[0].reason.find("its bytes do not match its seal"), std::string::npos)
       << skipped[0].reason;
   EXPECT_EQ(skipped[1].file, set.path_for(50));
   EXPECT_EQ(skipped[2].file, set.path_for(45));

@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <signal.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iterator>
 #include <string_view>
 
@@ -203,7 +205,23 @@ void Simulation::restart_from_latest() {
   spdlog::info("restarted from {} at step {}, t = {:.6g} s", latest->string(), step_, time());
 }
 
+namespace {
+
+// Fault injection for the crash tests (tests/slow/test_faults.cpp, docs/reliability.md): with
+// RIFT_FAULT_KILL_AT_STEP=<n> in the environment the process kills itself with SIGKILL as it starts
+// step n, between one step's outputs and the next: a moment in the middle of a run, chosen by the test.
+void kill_at_step_if_asked(int64_t step) {
+  static const long long kill_at = [] {
+    const char* value = std::getenv("RIFT_FAULT_KILL_AT_STEP");
+    return value ? std::strtoll(value, nullptr, 10) : 0LL;
+  }();
+  if (kill_at > 0 && step == kill_at) ::raise(SIGKILL);
+}
+
+}  // namespace
+
 void Simulation::step_once() {
+  kill_at_step_if_asked(step_ + 1);
   const bool observed =
       observe_every_step_ || observe_next_ || (step_ + 1) % kObservedEvery == 0 || step_ + 1 == total_steps_;
   const StepContext ctx{step_, time(), dt_, false, observed};

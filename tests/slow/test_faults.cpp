@@ -1,10 +1,11 @@
-// Crashes at write points: a run killed with SIGKILL at its n-th file commit (the temp file written and
-// synced, the rename not done: RIFT_FAULT_KILL_AT_COMMIT, engine/io/atomic_file.cpp) leaves a folder
-// whose every file reads, and `--restart latest` (or a fresh start when no checkpoint was written yet)
-// continues to the uninterrupted run's final state, bit for bit (summary.json state_hash, and the same
-// timeseries.csv), with no temp file left behind. The commit numbers are drawn from a seeded generator
-// over every commit the straight run makes, so the points are spread over scene, field, index, mesh,
-// checkpoint and time-series writes and the test is the same on every run.
+// Crashes at write points and in the middle of a run: a run killed with SIGKILL at its n-th file commit (the
+// temp file written and synced, the rename not done: RIFT_FAULT_KILL_AT_COMMIT, engine/io/atomic_file.cpp)
+// leaves a folder whose every file reads, and `--restart latest` (or a fresh start when no checkpoint was
+// written yet) continues to the uninterrupted run's final state, bit for bit (summary.json state_hash, and
+// the same timeseries.csv), with no temp file left behind. The commit numbers are drawn from a seeded
+// generator over every commit the straight run makes, so the points are spread over scene, field, index,
+// mesh, checkpoint and time-series writes and the test is the same on every run. The second test kills
+// the run as it starts a step drawn the same way (RIFT_FAULT_KILL_AT_STEP, engine/simulation.cpp).
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/mount.h>
@@ -42,14 +43,15 @@ const std::vector<std::string> kCommon{"--set",     "time.end=2.0e-4",
 
 // Runs rift (output to `log`) with RIFT_FAULT_KILL_AT_COMMIT=kill_at when kill_at > 0; returns the exit
 // status, or 128 + the signal.
-int run_rift(std::vector<std::string> args, const fs::path& log, long kill_at) {
+int run_rift(std::vector<std::string> args, const fs::path& log, long kill_at,
+             const char* hook = "RIFT_FAULT_KILL_AT_COMMIT") {
   args.insert(args.end(), kCommon.begin(), kCommon.end());
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ::dup2(fd, 1);
     ::dup2(fd, 2);
-    if (kill_at > 0) ::setenv("RIFT_FAULT_KILL_AT_COMMIT", std::to_string(kill_at).c_str(), 1);
+    if (kill_at > 0) ::setenv(hook, std::to_string(kill_at).c_str(), 1);
     std::vector<char*> argv{const_cast<char*>(RIFT_EXECUTABLE)};
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -101,6 +103,33 @@ size_t temp_files(const fs::path& out) {
   return n;
 }
 
+// Kills a run through `hook` at `k`, checks that every file it left reads, continues it (from its latest
+// checkpoint, or afresh when it wrote none) and checks the straight run's final state, time series and a
+// folder without temp files.
+void kill_then_continue(const char* hook, long k, const fs::path& straight, const nlohmann::json& reference,
+                        const fs::path& log) {
+  const std::string at = std::string(hook) + "=" + std::to_string(k);
+  const fs::path out = temp("killed");
+  ASSERT_EQ(run_rift({"run", scene, "--out", out.string()}, log, k, hook), 128 + SIGKILL)
+      << at << ": " << read(log);
+  expect_readable(out, k);
+  bool has_checkpoint = false;
+  if (fs::exists(out / "checkpoints"))
+    for (const auto& e : fs::directory_iterator(out / "checkpoints"))
+      has_checkpoint |= e.path().extension() == ".h5";
+  std::vector<std::string> again{"run", scene, "--out", out.string()};
+  if (has_checkpoint) again.insert(again.end(), {"--restart", "latest"});
+  std::printf("killed at %s: %s\n", at.c_str(),
+              has_checkpoint ? "restarted from its latest checkpoint" : "no checkpoint yet, started again");
+  ASSERT_EQ(run_rift(again, log, 0), 0) << at << ": " << read(log);
+  const auto resumed = nlohmann::json::parse(read(out / "summary.json"));
+  EXPECT_EQ(resumed["status"], "completed") << at;
+  EXPECT_EQ(resumed["state_hash"], reference["state_hash"]) << at;
+  EXPECT_EQ(read(out / "timeseries.csv"), read(straight / "timeseries.csv")) << at;
+  EXPECT_EQ(temp_files(out), 0u) << at;
+  fs::remove_all(out);
+}
+
 }  // namespace
 
 TEST(Faults, KilledAtWritePointsRestartsToTheStraightRun) {
@@ -126,30 +155,22 @@ TEST(Faults, KilledAtWritePointsRestartsToTheStraightRun) {
   std::set<long> points{1, 2};  // the scene file, then the first field output
   while (points.size() < 8) points.insert(std::uniform_int_distribution<long>(3, commits)(pick));
 
-  int killed = 0;
-  for (const long k : points) {
-    const fs::path out = temp("killed");
-    const int code = run_rift({"run", scene, "--out", out.string()}, log, k);
-    ASSERT_EQ(code, 128 + SIGKILL) << "commit " << k << ": " << read(log);
-    ++killed;
-    expect_readable(out, k);
-    bool has_checkpoint = false;
-    if (fs::exists(out / "checkpoints"))
-      for (const auto& e : fs::directory_iterator(out / "checkpoints"))
-        has_checkpoint |= e.path().extension() == ".h5";
-    std::vector<std::string> again{"run", scene, "--out", out.string()};
-    if (has_checkpoint) again.insert(again.end(), {"--restart", "latest"});
-    std::printf("killed at commit %ld of %ld: %s\n", k, commits,
-                has_checkpoint ? "restarted from its latest checkpoint" : "no checkpoint yet, started again");
-    ASSERT_EQ(run_rift(again, log, 0), 0) << "commit " << k << ": " << read(log);
-    const auto resumed = nlohmann::json::parse(read(out / "summary.json"));
-    EXPECT_EQ(resumed["status"], "completed") << "commit " << k;
-    EXPECT_EQ(resumed["state_hash"], reference["state_hash"]) << "commit " << k;
-    EXPECT_EQ(read(out / "timeseries.csv"), read(straight / "timeseries.csv")) << "commit " << k;
-    EXPECT_EQ(temp_files(out), 0u) << "commit " << k;
-    fs::remove_all(out);
-  }
-  EXPECT_EQ(killed, static_cast<int>(points.size()));
+  for (const long k : points) kill_then_continue("RIFT_FAULT_KILL_AT_COMMIT", k, straight, reference, log);
+  fs::remove_all(straight);
+  fs::remove(log);
+}
+
+// Killed in the middle of the run, at steps drawn from a seeded generator over the whole run (about
+// 2,500 steps): the same promises as at write points.
+TEST(Faults, KilledAtSeededStepsRestartsToTheStraightRun) {
+  const fs::path straight = temp("straight_steps"), log = temp("log_steps");
+  ASSERT_EQ(run_rift({"run", scene, "--out", straight.string()}, log, 0), 0) << read(log);
+  const auto reference = nlohmann::json::parse(read(straight / "summary.json"));
+  const long steps = reference["steps"].get<long>();
+  std::mt19937 pick(4122026);
+  std::set<long> points;
+  while (points.size() < 6) points.insert(std::uniform_int_distribution<long>(1, steps)(pick));
+  for (const long k : points) kill_then_continue("RIFT_FAULT_KILL_AT_STEP", k, straight, reference, log);
   fs::remove_all(straight);
   fs::remove(log);
 }

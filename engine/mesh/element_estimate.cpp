@@ -28,9 +28,7 @@ double enclosed_volume(std::span<const PolyhedralSurface> patches) {
   for (const PolyhedralSurface& s : patches)
     for (const auto& face : s.faces)
       for (size_t k = 1; k + 1 < face.size(); ++k) {  // a fan: signed, so non-convex polygons add up
-        const Vec3 &a = s.points[face[0]], &b = s.points[face[k]], &c = s.points[face[k + 1]];
-        six_volume += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                      a[2] * (b[0] * c[1] - b[1] * c[0]);
+        six_volume += dot(s.points[face[0]], cross(s.points[face[k]], s.points[face[k + 1]]));
       }
   return six_volume / 6.0;
 }

@@ -12,60 +12,46 @@
 #include "engine/core/fnv1a.hpp"
 
 namespace rift {
-namespace {
+InputFileReader::InputFileReader(const std::filesystem::path& path, const InputFileLimit& limit,
+                                 std::string_view what)
+    : path_(path), what_(what), max_(limit.max_bytes) {
+  // O_NONBLOCK: opening a FIFO would otherwise wait for a writer; it is refused just below.
+  fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) fail("cannot open the " + what_ + ": " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0) fail("cannot inspect the " + what_ + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) fail("the " + what_ + " is not a regular file");
+  size_ = static_cast<uint64_t>(st.st_size);
+  if (size_ > max_)
+    fail("the " + what_ + " is " + std::to_string(size_) + " bytes, above the limit of " +
+         std::to_string(max_) + " bytes" + (limit.key.empty() ? "" : " (raise it with " + limit.key + ")"));
+}
 
-// Closes the descriptor on every way out.
-class InputFd {
- public:
-  InputFd(const std::filesystem::path& path, const InputFileLimit& limit, std::string_view what)
-      : path_(path), what_(what) {
-    // O_NONBLOCK: opening a FIFO would otherwise wait for a writer; it is refused just below.
-    fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd_ < 0) fail("cannot open the " + what_ + ": " + std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd_, &st) != 0) fail("cannot inspect the " + what_ + ": " + std::strerror(errno));
-    if (!S_ISREG(st.st_mode)) fail("the " + what_ + " is not a regular file");
-    size_ = static_cast<uint64_t>(st.st_size);
-    max_ = limit.max_bytes;
-    if (size_ > max_)
-      fail("the " + what_ + " is " + std::to_string(size_) + " bytes, above the limit of " +
-           std::to_string(max_) + " bytes" + (limit.key.empty() ? "" : " (raise it with " + limit.key + ")"));
+InputFileReader::~InputFileReader() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+size_t InputFileReader::read_some(char* out, size_t n) {
+  for (;;) {
+    const ssize_t got = ::read(fd_, out, n);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) fail("cannot read the " + what_ + ": " + std::strerror(errno));
+    total_ += static_cast<uint64_t>(got);
+    if (total_ > max_) fail("the " + what_ + " grew beyond the limit of " + std::to_string(max_) + " bytes");
+    return static_cast<size_t>(got);
   }
-  InputFd(const InputFd&) = delete;
-  InputFd& operator=(const InputFd&) = delete;
-  ~InputFd() {
-    if (fd_ >= 0) ::close(fd_);
-  }
+}
 
-  uint64_t size() const { return size_; }
-
-  // Up to `n` bytes into `out`; 0 at the end of the file. A file grown past the limit since fstat fails.
-  size_t read_some(char* out, size_t n) {
-    for (;;) {
-      const ssize_t got = ::read(fd_, out, n);
-      if (got < 0 && errno == EINTR) continue;
-      if (got < 0) fail("cannot read the " + what_ + ": " + std::strerror(errno));
-      total_ += static_cast<uint64_t>(got);
-      if (total_ > max_)
-        fail("the " + what_ + " grew beyond the limit of " + std::to_string(max_) + " bytes");
-      return static_cast<size_t>(got);
-    }
-  }
-
- private:
-  [[noreturn]] void fail(const std::string& what) const { throw Error(path_.string() + ": " + what); }
-
-  std::filesystem::path path_;
-  std::string what_;
-  int fd_ = -1;
-  uint64_t size_ = 0, max_ = 0, total_ = 0;
-};
-
-}  // namespace
+// Closes the descriptor before throwing: a constructor that throws runs no destructor.
+void InputFileReader::fail(const std::string& what) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  throw Error(path_.string() + ": " + what);
+}
 
 std::string read_input_file(const std::filesystem::path& path, const InputFileLimit& limit,
                             std::string_view what) {
-  InputFd in(path, limit, what);
+  InputFileReader in(path, limit, what);
   std::string text(static_cast<size_t>(in.size()), '\0');
   size_t used = 0;
   for (;;) {
@@ -80,7 +66,7 @@ std::string read_input_file(const std::filesystem::path& path, const InputFileLi
 
 uint64_t hash_input_file(const std::filesystem::path& path, const InputFileLimit& limit,
                          std::string_view what) {
-  InputFd in(path, limit, what);
+  InputFileReader in(path, limit, what);
   std::vector<char> block(1 << 20);
   uint64_t h = fnv1a64_basis;
   for (size_t got; (got = in.read_some(block.data(), block.size())) > 0;) h = fnv1a64(block.data(), got, h);

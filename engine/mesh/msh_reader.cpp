@@ -1,5 +1,6 @@
 // Gmsh MSH 4.1 ASCII reader. Layout reference: the "MSH file format" chapter of the Gmsh manual.
-// One pass over the file held in memory; every record is parsed once, node tags are mapped through a
+// One pass over the file, streamed through a window (memory holds the mesh, not the text); every record is
+// parsed once, node tags are mapped through a
 // dense array (or a hash map when tags are very sparse) and physical tags through hash maps, so the cost
 // is O(file size) however many physical groups the file has.
 #include "engine/mesh/msh_reader.hpp"
@@ -13,7 +14,6 @@
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
-#include "engine/core/fnv1a.hpp"
 #include "engine/core/vec3.hpp"
 #include "engine/mesh/text_cursor.hpp"
 
@@ -58,8 +58,8 @@ class NodeTagMap {
 
 class MshParser {
  public:
-  MshParser(std::string_view text, const std::string& path, double scale)
-      : cur_(text, path), scale_(scale), max_records_(static_cast<int64_t>(text.size() / 2)) {}
+  MshParser(InputFileReader& file, const std::string& path, double scale, size_t window_bytes)
+      : cur_(file, path, window_bytes), scale_(scale), max_records_(static_cast<int64_t>(file.size() / 2)) {}
   TetMesh parse(MshReadStats* stats);
 
  private:
@@ -127,10 +127,11 @@ TetMesh MshParser::parse(MshReadStats* stats) {
     else if (section == "$PartitionedEntities")
       cur_.fail("an unpartitioned mesh", "$PartitionedEntities; save the mesh without partitions");
     else {
-      const std::string end = "$End" + std::string(section.substr(1));
+      // Copied: skipping moves the window under the token's view.
+      const std::string name(section);
+      const std::string end = "$End" + name.substr(1);
       const int line = cur_.line();
-      if (!cur_.skip_past_line_starting(end))
-        cur_.fail_at(line, end + " closing " + std::string(section), "end of file");
+      if (!cur_.skip_past_line_starting(end)) cur_.fail_at(line, end + " closing " + name, "end of file");
     }
   }
   if (!have_nodes_) cur_.fail("a $Nodes section", "end of file");
@@ -396,6 +397,7 @@ TetMesh MshParser::assemble(MshReadStats* stats) {
       v = new_index[v];
     }
   if (stats) {
+    stats->content_fnv1a64 = cur_.content_hash();  // the whole file: parsing ends at its end
     stats->nodes_in_file = nodes_.size();
     stats->unused_nodes_dropped = nodes_.size() - mesh.nodes.size();
     stats->tets = mesh.tets.size();
@@ -408,13 +410,13 @@ TetMesh MshParser::assemble(MshReadStats* stats) {
 
 }  // namespace
 
-TetMesh read_msh(const std::string& path, double scale, MshReadStats* stats, const InputFileLimit& limit) {
+TetMesh read_msh(const std::string& path, double scale, MshReadStats* stats, const InputFileLimit& limit,
+                 size_t window_bytes) {
   if (!(scale > 0.0) || !std::isfinite(scale))
     throw Error(path + ": expected a positive mesh scale, found " + std::to_string(scale));
-  const std::string text = read_input_file(path, limit, "mesh file");
+  InputFileReader file(path, limit, "mesh file");
   MshReadStats local;
-  local.content_fnv1a64 = fnv1a64(text.data(), text.size());
-  TetMesh mesh = MshParser(text, path, scale).parse(&local);
+  TetMesh mesh = MshParser(file, path, scale, window_bytes).parse(&local);
   if (stats) *stats = local;
   if (mesh.tets.empty()) {
     std::string found = "none";

@@ -16,8 +16,10 @@
 // dropped (a solid node without mass would break the physics).
 // Tets with negative orientation are flipped (nodes 1 and 2 swapped); a degenerate tet is an error.
 // The file is refused before it is read when it is no regular file or larger than the limit (the scene
-// key mesh.max_file_bytes, 2 GiB by default); a file that does not start with $MeshFormat is refused
-// without quoting any of it, and other errors quote at most the offending token.
+// key mesh.max_file_bytes, 2 GiB by default), and read as a stream through a window of 1 MiB: memory
+// holds the mesh being built, never the file's text; a token longer than the window is an error. A file that
+// does not start with $MeshFormat is refused without quoting any of it, and other errors quote at most the
+// offending token.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -31,6 +33,8 @@ namespace rift {
 
 // 2 GiB of MSH text is some 20 million tets; reading it takes several times that in memory.
 inline constexpr uint64_t msh_default_max_bytes = uint64_t{2} << 30;
+// The longest token or quoted name read_msh accepts; lines it skips may be longer.
+inline constexpr size_t msh_window_bytes = size_t{1} << 20;
 
 // What read_msh did besides building the mesh, for the log.
 struct MshReadStats {
@@ -44,9 +48,11 @@ struct MshReadStats {
 };
 
 // Reads a Gmsh MSH 4.1 ASCII file; coordinates are multiplied by `scale` (1e-3 for a mesh in mm).
-// Throws rift::Error "path:line: expected ..., found ..." on anything malformed.
+// Throws rift::Error "path:line: expected ..., found ..." on anything malformed. `window_bytes` is the
+// streaming window (tests read through tiny windows to cross every boundary).
 TetMesh read_msh(const std::string& path, double scale = 1.0, MshReadStats* stats = nullptr,
-                 const InputFileLimit& limit = {msh_default_max_bytes, "mesh.max_file_bytes"});
+                 const InputFileLimit& limit = {msh_default_max_bytes, "mesh.max_file_bytes"},
+                 size_t window_bytes = msh_window_bytes);
 
 // Writes `mesh` as MSH 4.1 ASCII: one physical volume per region, one physical surface per surface
 // name (tags 1, 2, ... in name order), coordinates in shortest round-trip form, so that read_msh gives

@@ -2,41 +2,76 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstring>
 
 #include "engine/core/error.hpp"
+#include "engine/core/fnv1a.hpp"
 
 namespace rift {
+namespace {
+
+bool is_space(char c) {
+  return c == ' ' || c == '\n' || c == '\t' || c == '\r';
+}
+
+}  // namespace
+
+TextCursor::TextCursor(std::string_view text, std::string path)
+    : text_(text), hash_(fnv1a64(text.data(), text.size())), path_(std::move(path)), end_(text.size()) {}
+
+TextCursor::TextCursor(InputFileReader& source, std::string path, size_t window_bytes)
+    : source_(&source),
+      window_(std::max<size_t>(window_bytes, 16)),
+      hash_(fnv1a64_basis),
+      path_(std::move(path)) {}
+
+bool TextCursor::more(size_t& keep_from) {
+  if (exhausted()) return false;
+  const size_t kept = end_ - keep_from;
+  if (kept == window_.size())
+    fail("a token or quoted string of at most " + std::to_string(window_.size()) + " bytes", "a longer one");
+  std::memmove(window_.data(), window_.data() + keep_from, kept);
+  pos_ -= keep_from;
+  keep_from = 0;
+  end_ = kept;
+  const size_t got = source_->read_some(window_.data() + end_, window_.size() - end_);
+  hash_ = fnv1a64(window_.data() + end_, got, hash_);
+  end_ += got;
+  at_eof_ = got == 0;
+  return got > 0;
+}
 
 void TextCursor::skip_space() {
-  while (pos_ < text_.size()) {
-    const char c = text_[pos_];
-    if (c == '\n') {
-      ++line_;
-    } else if (c != ' ' && c != '\t' && c != '\r') {
-      break;
+  for (;;) {
+    while (pos_ < end_) {
+      const char c = data()[pos_];
+      if (c == '\n')
+        ++line_;
+      else if (c != ' ' && c != '\t' && c != '\r')
+        return;
+      ++pos_;
     }
-    ++pos_;
+    size_t keep = pos_;
+    if (!more(keep)) return;
   }
 }
 
 std::string_view TextCursor::token() {
   skip_space();
   token_line_ = line_;
-  const size_t start = pos_;
-  while (pos_ < text_.size()) {
-    const char c = text_[pos_];
-    if (c == ' ' || c == '\n' || c == '\t' || c == '\r') break;
-    ++pos_;
+  size_t start = pos_;
+  for (;;) {
+    while (pos_ < end_ && !is_space(data()[pos_])) ++pos_;
+    if (pos_ < end_ || !more(start)) break;
   }
-  return text_.substr(start, pos_ - start);
+  return {data() + start, pos_ - start};
 }
 
 std::string_view TextCursor::peek() {
-  const size_t pos = pos_;
-  const int line = line_, token_line = token_line_;
+  const int token_line = token_line_;
   const std::string_view t = token();
-  pos_ = pos;
-  line_ = line;
+  pos_ -= t.size();  // a token holds no newline: line_ is the token's line
+  line_ = token_line_;
   token_line_ = token_line;
   return t;
 }
@@ -62,43 +97,78 @@ double TextCursor::real(std::string_view what) {
 std::string TextCursor::quoted(std::string_view what) {
   skip_space();
   token_line_ = line_;
-  if (pos_ >= text_.size() || text_[pos_] != '"')
-    fail(std::string(what) + " in double quotes", describe(peek()));
-  const size_t close = text_.find_first_of("\"\n", pos_ + 1);
-  if (close == std::string_view::npos || text_[close] != '"')
+  if (pos_ >= end_ || data()[pos_] != '"') fail(std::string(what) + " in double quotes", describe(peek()));
+  size_t scanned = 1;  // bytes after pos_ known to hold no quote and no newline
+  const char* close = nullptr;
+  for (;;) {
+    const char* from = data() + pos_ + scanned;
+    const char* stop = data() + end_;
+    close = std::find_if(from, stop, [](char c) { return c == '"' || c == '\n'; });
+    if (close != stop) break;
+    scanned = end_ - pos_;
+    size_t keep = pos_;
+    if (!more(keep)) {  // the end of the file (more() may have moved the text: `close` is stale)
+      close = nullptr;
+      break;
+    }
+  }
+  if (close == nullptr || *close != '"')
     fail(std::string(what) + " with a closing double quote on the same line", "none");
-  std::string value(text_.substr(pos_ + 1, close - pos_ - 1));
-  pos_ = close + 1;
+  const size_t length = static_cast<size_t>(close - (data() + pos_)) - 1;
+  std::string value(data() + pos_ + 1, length);
+  pos_ += length + 2;
   return value;
 }
 
 void TextCursor::skip_rest_of_line() {
-  const size_t nl = text_.find('\n', pos_);
-  if (nl == std::string_view::npos) {
-    pos_ = text_.size();
-  } else {
-    pos_ = nl + 1;
-    ++line_;
+  for (;;) {
+    const void* nl = std::memchr(data() + pos_, '\n', end_ - pos_);
+    if (nl) {
+      pos_ = static_cast<size_t>(static_cast<const char*>(nl) - data()) + 1;
+      ++line_;
+      return;
+    }
+    pos_ = end_;
+    size_t keep = pos_;
+    if (!more(keep)) return;
   }
 }
 
 bool TextCursor::skip_past_line_starting(std::string_view marker) {
-  // Scan whole lines: unknown sections ($NodeData of a million values) are skipped at memory speed.
-  size_t line_start = pos_;
-  while (line_start < text_.size()) {
-    const size_t nl = text_.find('\n', line_start);
-    const size_t line_end = nl == std::string_view::npos ? text_.size() : nl;
-    std::string_view line = text_.substr(line_start, line_end - line_start);
+  // Whole lines are scanned, not tokens: unknown sections ($NodeData of a million values) are skipped at
+  // memory speed. pos_ stays at the start of the line being examined; a line longer than the window is
+  // dropped as it is read and cannot be the marker.
+  size_t scanned = 0;  // bytes after pos_ known to hold no newline
+  bool too_long = false;
+  for (;;) {
+    const void* found = std::memchr(data() + pos_ + scanned, '\n', end_ - pos_ - scanned);
+    size_t line_end = found ? static_cast<size_t>(static_cast<const char*>(found) - data()) : end_;
+    if (!found && !exhausted()) {
+      if (pos_ == 0 && end_ == window_.size()) {
+        too_long = true;
+        pos_ = end_;
+      }
+      scanned = end_ - pos_;
+      size_t keep = pos_;
+      more(keep);
+      continue;
+    }
+    std::string_view line(data() + pos_, line_end - pos_);
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
-    if (line == marker) {
-      line_ += static_cast<int>(std::count(text_.begin() + pos_, text_.begin() + line_start, '\n'));
+    if (!too_long && line == marker) {
       token_line_ = line_;
       pos_ = line_end;
       return true;
     }
-    line_start = line_end + 1;
+    if (!found) {
+      pos_ = end_;
+      return false;
+    }
+    pos_ = line_end + 1;
+    ++line_;
+    scanned = 0;
+    too_long = false;
   }
-  return false;
 }
 
 std::string TextCursor::describe(std::string_view token) {

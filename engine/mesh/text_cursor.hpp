@@ -1,16 +1,26 @@
 #pragma once
-// A forward-only tokenizer over a whole text file held in memory, tracking line numbers so that every
-// parse error can say "path:line: expected ..., found ...". Tokens are whitespace-separated views into
-// the text (no allocation); numbers are parsed with std::from_chars, which is exact and fast.
+// A forward-only tokenizer over a text file, tracking line numbers so that every parse error can say
+// "path:line: expected ..., found ...". The text is either held in memory or streamed from a file
+// through a window of fixed size, so that reading a mesh of gigabytes needs the window, not the file, in
+// memory. Tokens are whitespace-separated views into the text or the window (no allocation), valid until
+// the next call; numbers are parsed with std::from_chars, which is exact and fast.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "engine/io/input_file.hpp"
 
 namespace rift {
 
 class TextCursor {
  public:
-  TextCursor(std::string_view text, std::string path) : text_(text), path_(std::move(path)) {}
+  // Over text held in memory.
+  TextCursor(std::string_view text, std::string path);
+  // Over a file read through `source`, `window_bytes` at a time: a token or quoted string longer than the
+  // window is an error; a longer line is fine where it is skipped.
+  TextCursor(InputFileReader& source, std::string path, size_t window_bytes);
 
   // The next whitespace-separated token, or "" at the end of the text.
   std::string_view token();
@@ -28,6 +38,8 @@ class TextCursor {
 
   int line() const { return token_line_; }  // line of the last token read (1-based)
   const std::string& path() const { return path_; }
+  // FNV-1a 64 of every byte read so far (of the whole file once the last token has been read).
+  uint64_t content_hash() const { return hash_; }
 
   // Throws rift::Error "path:line: expected <expected>, found <found>".
   [[noreturn]] void fail(std::string_view expected, std::string_view found) const;
@@ -38,12 +50,21 @@ class TextCursor {
 
  private:
   void skip_space();
+  // Reads more of the file behind the text at hand, first dropping what lies before `keep_from` (which
+  // becomes 0; pos_ moves with it). False at the end of the file or for text held in memory.
+  bool more(size_t& keep_from);
+  bool exhausted() const { return source_ == nullptr || at_eof_; }
+  const char* data() const { return source_ ? window_.data() : text_.data(); }
 
-  std::string_view text_;
+  std::string_view text_;  // text held in memory, or empty when streaming
+  InputFileReader* source_ = nullptr;
+  std::vector<char> window_;
+  bool at_eof_ = false;
+  uint64_t hash_ = 0;
   std::string path_;
-  size_t pos_ = 0;
-  int line_ = 1;        // line at pos_
-  int token_line_ = 1;  // line of the last token
+  size_t pos_ = 0, end_ = 0;  // next byte and end of the text at hand
+  int line_ = 1;              // line at pos_
+  int token_line_ = 1;        // line of the last token
 };
 
 }  // namespace rift

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/core/fnv1a.hpp"
 #include "engine/mesh/msh_reader.hpp"
 
 namespace rift {
@@ -304,6 +305,69 @@ TEST(MshReader, HundredThousandPhysicalSurfacesReadInLinearTime) {
     EXPECT_EQ(mesh.surface_names[i], "s" + std::to_string(i + 1));
     EXPECT_EQ(mesh.triangle_surface[i], i);
   }
+}
+
+// The error message of read_msh(path) through a window of `window` bytes, or "no error" when it reads.
+std::string error_through_window(const std::string& path, size_t window) {
+  return test_error([&] {
+    read_msh(path, 1.0, nullptr, {msh_default_max_bytes, "mesh.max_file_bytes"}, window);
+  });
+}
+
+TEST(MshReader, StreamingThroughAnyWindowGivesTheSameMeshHashAndErrors) {
+  // The file is streamed through a window; tokens, quoted names, skipped lines and sections cross its
+  // boundary at every offset when the window runs from 24 to 160 bytes (the longest token, $EndPhysicalNames,
+  // is 17). CRLF line ends and a comment line longer than any of these windows are mixed in.
+  std::string text = kCube;
+  text.insert(text.find("anything at all"), std::string(500, 'x') + " $EndComments-not\n");
+  size_t crlf = text.find("$EndPhysicalNames");
+  text.replace(crlf - 1, 1, "\r\n");
+  const std::string path = write_file("windows.msh", text);
+  MshReadStats whole_stats;
+  const TetMesh whole = read_msh(path, 1.0, &whole_stats);
+  EXPECT_EQ(whole_stats.content_fnv1a64, fnv1a64(text.data(), text.size()));
+  // Damaged copies: each must give the same message (same line) through every window.
+  const std::vector<std::string> damaged = {
+      text.substr(0, text.find("0 0 -1\n$EndNodes")),                            // cut in the nodes
+      std::string(text).replace(text.find("$EndElements"), 12, "$EndElementz"),  // wrong closing marker
+      std::string(text).replace(text.find("\"rock\""), 6, "\"rock"),             // unclosed quote
+      text.substr(0, text.find("$EndComments")),                                 // unterminated section
+  };
+  std::vector<std::string> damaged_paths, whole_errors;
+  for (size_t i = 0; i < damaged.size(); ++i) {
+    damaged_paths.push_back(write_file("damaged_" + std::to_string(i) + ".msh", damaged[i]));
+    whole_errors.push_back(error_through_window(damaged_paths.back(), msh_window_bytes));
+    EXPECT_NE(whole_errors.back(), "no error") << i;
+  }
+  for (size_t window = 24; window <= 160; ++window) {
+    MshReadStats stats;
+    const TetMesh mesh = read_msh(path, 1.0, &stats, {msh_default_max_bytes, "mesh.max_file_bytes"}, window);
+    EXPECT_EQ(mesh.nodes, whole.nodes) << window;
+    EXPECT_EQ(mesh.tets, whole.tets) << window;
+    EXPECT_EQ(mesh.tet_region, whole.tet_region) << window;
+    EXPECT_EQ(mesh.region_names, whole.region_names) << window;
+    EXPECT_EQ(mesh.triangles, whole.triangles) << window;
+    EXPECT_EQ(mesh.triangle_surface, whole.triangle_surface) << window;
+    EXPECT_EQ(mesh.surface_names, whole.surface_names) << window;
+    EXPECT_EQ(stats.content_fnv1a64, whole_stats.content_fnv1a64) << window;
+    EXPECT_EQ(stats.skipped_elements, whole_stats.skipped_elements) << window;
+    for (size_t i = 0; i < damaged.size(); ++i)
+      EXPECT_EQ(error_through_window(damaged_paths[i], window), whole_errors[i]) << window << " " << i;
+  }
+}
+
+TEST(MshReader, ATokenLongerThanTheWindowIsRefused) {
+  // Memory is bounded by the window: a 100-digit coordinate through a 32-byte window is an error that
+  // names the window, not a growing buffer.
+  std::string text = kCube;
+  text.replace(text.find("5 5 5"), 1, std::string(100, '5'));
+  const std::string path = write_file("long_token.msh", text);
+  EXPECT_NE(error_through_window(path, 32).find(":" + std::to_string(line_of(text, "555")) +
+                                                ": expected a token or quoted string of at most 32 bytes, "
+                                                "found a longer one"),
+            std::string::npos)
+      << error_through_window(path, 32);
+  EXPECT_EQ(error_through_window(path, 128), "no error");
 }
 
 TEST(MshWriter, RoundTripGivesTheSameMesh) {

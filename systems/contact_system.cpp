@@ -57,7 +57,7 @@ ContactSystem::ContactSystem(Store& store, const ContactSpec& spec, size_t input
   nodes.add<double>("contact_force", 3);
   nodes.add<double>("x_detect", 3);
   Table& pairs = store_.add_table(solid::contact_pair_table);
-  pairs.add<int32_t>("tets", 2);
+  pairs.add<int32_t>("tets", 2).indexes(IndexTarget::rows_of(solid::tet_table));
   pairs.add<double>("history", 3);
   pairs.add<double>("force", 24);
   for (const char* c : {"friction_dissipation", "damping_dissipation"}) pairs.add<double>(c);

@@ -39,8 +39,8 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
   const FractureSpec& f = *spec_.fracture;
   const int points = f.integration_points;
   Table& joints = store_.add_table(solid::joint_table);
-  joints.add<int32_t>("nodes", 6);
-  joints.add<int32_t>("tets", 2);
+  joints.add<int32_t>("nodes", 6).indexes(IndexTarget::rows_of(solid::node_table));
+  joints.add<int32_t>("tets", 2).indexes(IndexTarget::rows_of(solid::tet_table));
   joints.add<int32_t>("material");
   joints.add<double>("d_max", points);
   joints.add<uint8_t>("broken");
@@ -83,6 +83,7 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
     }
     material[j] = it->second;
   }
+  joints.column("material").indexes(IndexTarget::list_of(joint_materials_.size()));
   // The residual-friction slider's anchors (kernels/joint_law.hpp), only where some material has one.
   if (std::any_of(joint_materials_.begin(), joint_materials_.end(),
                   [](const kernels::JointMaterial& m) { return m.residual_friction > 0.0; })) {
@@ -130,7 +131,9 @@ void SolidModel::create_bookkeeping_tables() {
   Table& events = store_.add_table(solid::event_table);
   events.add<int64_t>("step");
   events.add<double>("time");
-  events.add<int32_t>("joint");
+  // Without joints nothing breaks: the log stays empty, and any index in it is wrong.
+  events.add<int32_t>("joint").indexes(
+      store_.has(solid::joint_table) ? IndexTarget::rows_of(solid::joint_table) : IndexTarget::list_of(0));
   events.add<uint8_t>("mode");
   events.add<double>("centroid", 3);
   events.add<double>("normal", 3);
@@ -319,6 +322,7 @@ void SolidModel::add_crack_faces() {
   crack.surface = "solid.fracture.crack_pressure";
   crack.function = *spec_.fracture->crack_pressure;
   load_conditions_.push_back(crack);
+  faces.column("load").indexes(IndexTarget::list_of(load_conditions_.size()));
 }
 
 }  // namespace rift

@@ -77,8 +77,8 @@ void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh
   nodes.add<double>("inv_mass");
   nodes.add<uint8_t>("free", 3);
   nodes.add<int32_t>("held", 3);
-  nodes.add<int32_t>("slots", 2);
-  nodes.add<int32_t>("vertex");
+  nodes.add<int32_t>("slots", 2).indexes(IndexTarget::rows_of(solid::slot_table).or_end());
+  nodes.add<int32_t>("vertex").indexes(IndexTarget::list_of(mesh.nodes.size()));
   nodes.resize(dm.nodes.size());
   std::copy(dm.node_vertex.begin(), dm.node_vertex.end(), nodes.span<int32_t>("vertex").begin());
   auto x0 = nodes.span<double>("x0");
@@ -89,11 +89,11 @@ void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh
   std::fill(nodes.span<int32_t>("held").begin(), nodes.span<int32_t>("held").end(), -1);
 
   Table& tets = store_.add_table(solid::tet_table);
-  tets.add<int32_t>("nodes", 4);
+  tets.add<int32_t>("nodes", 4).indexes(IndexTarget::rows_of(solid::node_table));
   tets.add<double>("dm_inv", 9);
   tets.add<double>("volume0");
-  tets.add<int32_t>("material");
-  tets.add<int32_t>("region");
+  tets.add<int32_t>("material").indexes(IndexTarget::list_of(spec_.materials.size()));
+  tets.add<int32_t>("region").indexes(IndexTarget::list_of(mesh.region_names.size()));
   tets.add<double>("corner_force", 12);
   tets.add<double>("stress", 6);
   tets.add<double>("energy");
@@ -153,7 +153,7 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
   auto free = nodes.span<uint8_t>("free");
   auto held = nodes.span<int32_t>("held");
   Table& faces = store_.add_table(solid::face_table);
-  faces.add<int32_t>("nodes", 3);
+  faces.add<int32_t>("nodes", 3).indexes(IndexTarget::rows_of(solid::node_table));
   faces.add<int32_t>("load");
   faces.add<double>("corner_force", 9);
 
@@ -221,6 +221,8 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
   faces.resize(face_load.size());
   std::copy(face_nodes.begin(), face_nodes.end(), faces.span<int32_t>("nodes").begin());
   std::copy(face_load.begin(), face_load.end(), faces.span<int32_t>("load").begin());
+  faces.column("load").indexes(IndexTarget::list_of(load_conditions_.size()));
+  nodes.column("held").indexes(IndexTarget::list_of(velocity_conditions_.size()).or_none());
 }
 
 size_t SolidModel::hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index) {
@@ -282,6 +284,9 @@ void SolidModel::build_force_slots() {
       slot[next[list[k]]++] = first + static_cast<int32_t>(src == 1 ? joint_corner_slot(k) : k);
     first += static_cast<int32_t>(list.size());
   }
+  slots.column("slot").indexes(
+      IndexTarget::list_of(static_cast<size_t>(first)));  // corner slots: tets', then joints', then faces'
+
   for (size_t n = 0; n < nodes.size(); ++n) {
     range[2 * n] = count[n];
     range[2 * n + 1] = count[n + 1];

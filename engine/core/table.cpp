@@ -47,6 +47,13 @@ std::optional<ElementType> element_type_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+Column& Column::indexes(IndexTarget target) {
+  if (type_ != ElementType::i32 && type_ != ElementType::i64)
+    throw Error("column " + key() + " holds " + element_type_name(type_) + ", which cannot index rows");
+  index_target_ = std::move(target);
+  return *this;
+}
+
 void Column::move_row(size_t from, size_t to) {
   const size_t row_bytes = components_ * element_size(type_);
   std::memcpy(buffer_.data() + to * row_bytes, buffer_.data() + from * row_bytes, row_bytes);

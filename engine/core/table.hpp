@@ -53,6 +53,27 @@ constexpr ElementType element_type_of<uint8_t>() {
   return ElementType::u8;
 }
 
+// What the values of an integer column index: rows of a table, or entries of a list fixed at set-up
+// (materials, boundary conditions, mesh vertices). Restoring a checkpoint checks every value against it
+// before any system reads the column: checksums prove a file intact, not that Rift wrote it.
+struct IndexTarget {
+  std::string table;  // rows of this table; empty for a list of `count` entries
+  int64_t count = 0;  // the list's length, when `table` is empty
+  bool none = false;  // -1 stands for "none"
+  bool end = false;   // one past the last index is allowed (the end of a range)
+
+  static IndexTarget rows_of(std::string table) { return {std::move(table), 0, false, false}; }
+  static IndexTarget list_of(size_t count) { return {"", static_cast<int64_t>(count), false, false}; }
+  IndexTarget or_none() && {
+    none = true;
+    return std::move(*this);
+  }
+  IndexTarget or_end() && {
+    end = true;
+    return std::move(*this);
+  }
+};
+
 class Column {
  public:
   Column(std::string table, std::string name, ElementType type, int components)
@@ -86,6 +107,9 @@ class Column {
     buffer_.resize(rows * components_ * element_size(type_));
   }
   void reserve(size_t rows) { buffer_.reserve(rows * components_ * element_size(type_)); }
+  // Declares what the values index (integer columns only).
+  Column& indexes(IndexTarget target);
+  const std::optional<IndexTarget>& index_target() const { return index_target_; }
   // Moves row `from` onto row `to` (used by swap-remove).
   void move_row(size_t from, size_t to);
 
@@ -104,6 +128,7 @@ class Column {
   int components_;
   size_t rows_ = 0;
   AlignedBuffer buffer_;
+  std::optional<IndexTarget> index_target_;
 };
 
 class Table {

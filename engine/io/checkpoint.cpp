@@ -199,6 +199,49 @@ std::vector<TablePlan> plan_restore(const H5File& h5, Store& store) {
   return plan;
 }
 
+// The range an index column's values must lie in, and how the message names it.
+struct IndexRange {
+  int64_t lo, hi;  // inclusive
+  std::string what;
+};
+
+IndexRange index_range(const Store& store, const IndexTarget& target) {
+  const int64_t count =
+      target.table.empty() ? target.count : static_cast<int64_t>(store.table(target.table).size());
+  std::string what = target.table.empty() ? "a list of " + std::to_string(count) + " entries"
+                                          : std::to_string(count) + " rows of " + target.table;
+  if (target.none) what += ", or -1 for none";
+  if (target.end) what += ", or the end of a range";
+  return {target.none ? -1 : 0, count - (target.end ? 0 : 1), what};
+}
+
+template <class T>
+void check_index_values(const std::filesystem::path& file, const Column& column, const IndexRange& range) {
+  const auto values = column.values<const T>();
+  const size_t per_row = static_cast<size_t>(column.components());
+  for (size_t i = 0; i < values.size(); ++i) {
+    const int64_t v = static_cast<int64_t>(values[i]);
+    if (v < range.lo || v > range.hi)
+      throw Error("checkpoint " + file.string() + ": column '" + column.key() + "' holds " +
+                  std::to_string(v) + " at row " + std::to_string(i / per_row) + ", which is no index into " +
+                  range.what +
+                  " (the file passes its checksums, so it was written wrong, not damaged later)");
+  }
+}
+
+// After every table is restored, since a column may index a table stored after its own.
+void check_index_columns(const std::filesystem::path& file, const Store& store) {
+  for (const auto& table : store.tables())
+    for (const auto& column : table->columns()) {
+      if (!column->index_target()) continue;
+      const IndexRange range = index_range(store, *column->index_target());
+      if (column->type() == ElementType::i32)
+        check_index_values<int32_t>(file, *column, range);
+      else
+        check_index_values<int64_t>(file, *column, range);
+    }
+}
+
 }  // namespace
 
 void write_checkpoint(const std::filesystem::path& file, const Store& store, const CheckpointMeta& meta) {
@@ -275,6 +318,7 @@ CheckpointMeta read_checkpoint(const std::filesystem::path& file, Store& store) 
       check_column(f, p.table->name(), column->name(), column->data(), column->bytes());
     }
   }
+  check_index_columns(file, store);
   return f.meta;
 }
 

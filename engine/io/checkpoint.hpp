@@ -58,7 +58,8 @@ CheckpointMeta verify_checkpoint(const std::filesystem::path& file);
 // resized to the stored row count. On any mismatch of tables or columns nothing in `store` is changed
 // and a rift::Error names the file and the table/column. Each column's checksum is checked as it is
 // read: a damaged column throws after the columns before it were restored (verify_checkpoint first
-// tells whether a file is intact without touching a store).
+// tells whether a file is intact without touching a store). Then every column that declares an
+// IndexTarget is checked against it: an index out of range throws, naming the column, row and value.
 CheckpointMeta read_checkpoint(const std::filesystem::path& file, Store& store);
 
 // A checkpoint a restart could not use, and why.

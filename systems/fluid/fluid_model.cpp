@@ -105,12 +105,12 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
   nodes.add<double>("pressure", 1);
   nodes.add<double>("previous_velocity", 3);
   Table& tets = store_.add_table(fluid::tet_table);
-  tets.add<int32_t>("nodes", 4);
+  tets.add<int32_t>("nodes", 4).indexes(IndexTarget::rows_of(fluid::node_table));
   tets.add<double>("pressure_matrix_coefficient", 1);
   if (spec.adapt) {
     Table& faces = store_.add_table(fluid::boundary_table);
-    faces.add<int32_t>("nodes", 3);
-    faces.add<int32_t>("surface", 1);
+    faces.add<int32_t>("nodes", 3).indexes(IndexTarget::rows_of(fluid::node_table));
+    faces.add<int32_t>("surface", 1).indexes(IndexTarget::list_of(mesh.surface_names.size()));
   }
   Table& step = store_.add_table(fluid::step_table);
   for (const char* c : fluid::step_columns) step.add<double>(c, 1);

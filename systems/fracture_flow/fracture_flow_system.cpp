@@ -32,7 +32,7 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
   row_of_mesh_vertex_.assign(vent_vertex.size(), -1);
   for (size_t r = 0; r < vertices.size(); ++r) row_of_mesh_vertex_[size_t(vertices[r])] = int32_t(r);
   Table& rows = store_.add_table(vertex_table);
-  rows.add<int32_t>("mesh_vertex", 1);
+  rows.add<int32_t>("mesh_vertex", 1).indexes(IndexTarget::list_of(vent_vertex.size()));
   rows.add<double>("pressure", 1);
   rows.add<double>("mass", 1);
   rows.add<uint8_t>("role", 1);

@@ -13,6 +13,7 @@
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/element_estimate.hpp"
+#include "engine/mesh/graded_axis.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/mesh/spatial_order.hpp"
 #include "engine/mesh/structured_box.hpp"
@@ -53,6 +54,10 @@ TetMesh load_mesh(const MeshSpec& spec, const std::string& section) {
   check_lattice_budget(*spec.generate);
   if (spec.generate->shape == MeshGenerateSpec::Shape::blocks)
     return generate_block_assembly(spec.generate->blocks);
+  if (const auto& g = spec.generate->graded) {
+    return structured_box_on_axes(graded_lattice_axes(spec.generate->origin, spec.generate->size, g->fine_min,
+                                                      g->fine_max, g->size, g->growth));
+  }
   if (spec.generate->cells) {
     StructuredBoxSpec box;
     box.lo = spec.generate->origin;

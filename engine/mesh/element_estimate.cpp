@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/graded_axis.hpp"
 
 namespace rift {
 namespace {
@@ -84,6 +85,11 @@ void check_lattice_budget(const MeshGenerateSpec& spec) {
   auto tets = [](const std::array<int, 3>& c) { return 6.0 * c[0] * c[1] * c[2]; };
   double total = 0.0;
   if (spec.cells) total = tets(*spec.cells);
+  if (const auto& g = spec.graded) {
+    const auto n = graded_lattice_nodes(spec.origin, spec.size, g->fine_min, g->fine_max, g->size, g->growth);
+    total =
+        6.0 * static_cast<double>(n[0] - 1) * static_cast<double>(n[1] - 1) * static_cast<double>(n[2] - 1);
+  }
   for (const BlockSpec& b : spec.blocks) total += tets(b.cells);
   if (total <= static_cast<double>(spec.max_elements)) return;
   throw Error(fmt::format(

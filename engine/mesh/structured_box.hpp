@@ -7,6 +7,7 @@
 // Named surfaces: "xmin", "xmax", "ymin", "ymax", "zmin", "zmax" (boundary triangles, 2 per cell face);
 // one region "domain". Node (i, j, k) has index i + (nx + 1) * (j + (ny + 1) * k).
 #include <array>
+#include <vector>
 
 #include "engine/mesh/tet_mesh.hpp"
 
@@ -19,5 +20,9 @@ struct StructuredBoxSpec {
 };
 
 TetMesh structured_box(const StructuredBoxSpec& spec);
+
+// The same lattice with its nodes at the given coordinates along each axis (each increasing, at least 2):
+// a graded lattice (graded_axis.hpp). A map increasing along each axis keeps every tet positive.
+TetMesh structured_box_on_axes(const std::array<std::vector<double>, 3>& coordinates);
 
 }  // namespace rift

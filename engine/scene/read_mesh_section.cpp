@@ -120,6 +120,33 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   }
 }
 
+// graded: the fine box must overlap the box along every axis (checked when both were read).
+LatticeGradingSpec read_grading(MapReader& r, const MeshGenerateSpec& box, bool box_ok) {
+  LatticeGradingSpec spec;
+  spec.fine_min = r.vec3("fine_min", any_real("m"), std::nullopt);
+  spec.fine_max = r.vec3("fine_max", any_real("m"), std::nullopt);
+  spec.size = r.real("size", positive("m"), std::nullopt);
+  spec.growth = r.real("growth", RealRule{"", 1.0, 2.0, false, false}, 1.25);
+  if (r.ok("fine_min") && r.ok("fine_max"))
+    for (int a = 0; a < 3; ++a) {
+      const double lo = box.origin[a], hi = box.origin[a] + box.size[a];
+      if (!(spec.fine_max[a] > spec.fine_min[a]))
+        r.error("fine_max", "each coordinate above fine_min's (" + message_real(spec.fine_min[a]) +
+                                " along " + std::string(kAxes[a]) + ")");
+      else if (box_ok && !(spec.fine_max[a] > lo && spec.fine_min[a] < hi))
+        r.error("fine_max", "a fine box that overlaps the box along " + std::string(kAxes[a]) + " " +
+                                interval_text(lo, hi));
+      else if (r.ok("size") &&
+               (std::min(hi, spec.fine_max[a]) - std::max(lo, spec.fine_min[a])) / spec.size > 1e6)
+        r.error("size", "at most 1e6 cells across the fine box along " + std::string(kAxes[a]));
+      else
+        continue;
+      break;
+    }
+  r.finish();
+  return spec;
+}
+
 // cells: [nx, ny, nz], whole numbers >= 1.
 std::optional<std::array<int, 3>> read_cells(MapReader& g) {
   const std::array<double, 3> c = g.vec3("cells", RealRule{"", 1.0, 1e6, false, false}, std::nullopt);
@@ -147,6 +174,22 @@ MeshGenerateSpec read_generate(MapReader& g) {
     return spec;
   }
   spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
+  if (g.has("graded") && spec.shape == MeshGenerateSpec::Shape::box) {  // a graded lattice
+    MapReader r = g.section("graded", false);
+    spec.graded = read_grading(r, spec, g.has("box") && g.ok("box") && g.ok("origin"));
+    for (auto key : {"cells", "size_min", "size_max", "grading", "seed", "notches"})
+      g.forbid(key, "with graded (a graded lattice's sizes are its own; no seed or notches)");
+    g.finish();
+    return spec;
+  }
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder) {
+    g.forbid("graded", "for a cylinder (a lattice is a box)");
+  } else {
+    g.declare("graded");
+    MapReader unused =
+        MapReader::silenced(g.context(), g.key_path("graded"), g.doc_key_path("graded"), g.where());
+    read_grading(unused, spec, false);
+  }
   if (g.has("cells") && spec.shape == MeshGenerateSpec::Shape::box) {  // a lattice: no sizing, no notches
     spec.cells = read_cells(g);
     for (auto key : {"size_min", "size_max", "grading", "seed", "notches"})

@@ -131,6 +131,14 @@ void emit_mesh(Lines& o, const MeshSpec& m, int indent = 0) {
     o.line(i + 2, "box", vec3(g.size));
   }
   o.line(i + 2, "origin", vec3(g.origin));
+  if (g.graded) {  // a graded lattice: the reader forbids the sizing keys
+    o.line(i + 2, "graded");
+    o.line(i + 3, "fine_min", vec3(g.graded->fine_min));
+    o.line(i + 3, "fine_max", vec3(g.graded->fine_max));
+    o.line(i + 3, "size", yaml_real(g.graded->size));
+    o.line(i + 3, "growth", yaml_real(g.graded->growth));
+    return;
+  }
   if (g.cells) {  // a structured lattice: the reader forbids the sizing keys
     const auto& c = *g.cells;
     o.line(i + 2, "cells",

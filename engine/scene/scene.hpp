@@ -45,6 +45,14 @@ struct BlockSpec {
 // 20 million tets: about 13 GB to mesh and run an unjointed solid, most of this machine class's memory.
 inline constexpr uint64_t kDefaultMaxElements = 20'000'000;
 
+// A lattice whose cells are `size` inside the box [fine_min, fine_max] and grow by `growth` per cell
+// outside it, axis by axis, up to the box's faces.
+struct LatticeGradingSpec {
+  std::array<double, 3> fine_min{}, fine_max{};  // [m], absolute (origin included)
+  double size = 0.0;                             // cell size in the fine box [m]
+  double growth = 1.25;                          // ratio of neighbouring cells outside it
+};
+
 struct MeshGenerateSpec {
   enum class Shape { box, cylinder, blocks };
   Shape shape = Shape::box;
@@ -60,6 +68,8 @@ struct MeshGenerateSpec {
   uint32_t seed = 1;               // generator seed: the same seed gives the same mesh
   // box only, instead of size_min/size_max: a structured Kuhn lattice of nx x ny x nz cells (6 tets each)
   std::optional<std::array<int, 3>> cells;
+  // box only, instead of cells and sizing: a Kuhn lattice graded from a fine box outward (graded_axis.hpp)
+  std::optional<LatticeGradingSpec> graded;
   // The mesh section's max_elements and its key path: meshing is refused, before it starts, when it is
   // expected to make more tets (element_estimate.hpp; a lattice's count is exact).
   uint64_t max_elements = kDefaultMaxElements;

@@ -13,12 +13,14 @@
 // trapezoid rule of p dV over the steps).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 
 #include "engine/core/state_hash.hpp"
 #include "systems/fracture_flow/fracture_flow_model.hpp"
+#include "systems/solid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 #include "tests/validation/validation_support.hpp"
@@ -29,7 +31,7 @@ namespace {
 using validation::run_watching;
 using validation::validation_scene;
 
-constexpr double kE = 1.0e10, kNu = 0.25, kA = 1.0;
+constexpr double kE = 1.0e10, kNu = 0.25, kA = 1.0, kGI = 93.75;  // the KGD scenes' rock
 const double kEp = kE / (1.0 - kNu * kNu);
 constexpr double kInjected = 3.68156e-5 * 16.0;  // m^3 per metre of crack: the half model's x 2 / 0.125 m
 
@@ -114,37 +116,76 @@ TEST(HydraulicFracture, SneddonByInjectionStiffAndSoftFluid) {
 // the crack (Sneddon: w0 +1.2 %), the plate is finite. Measured at 8 elements per metre, at 0.05 / 0.075 /
 // 0.1 s: half-length +6.2 / +4.1 / +2.4 %, mouth opening +2.1 / +1.9 / +2.1 %, pressure +1.5 / -0.9 / -3.0 %
 // (docs/hydraulic-fracture.md has the refinement study).
-struct KgdResult {
+// Fracture energy: the slope of the solid's fracture dissipation against the area of the joints broken
+// since t = 0, over the samples from 0.04 s on, must be G_I within 2 % (the bound). A slope, not a
+// ratio of totals: the process zone ahead of the tip holds partly softened joints whose dissipation is
+// not yet broken area, a content that moves with the tip but does not grow (16.0 J dissipated against
+// 12.5 J of G_I x broken area at 0.1 s). Measured: 93.74 J/m^2 for G_I = 93.75.
+struct VertexResult {
   double ratio[3][3] = {};  // per time: half-length, mouth opening, pressure (mean of measured / closed form)
   double worst_mass = 0.0, kinetic = 0.0, work = 0.0, balance = 0.0;
+  double energy_per_area = 0.0;  // slope of the fracture dissipation against the area broken, J/m^2
 };
+
+// Least-squares slope of y against x.
+double slope(const std::vector<std::pair<double, double>>& xy) {
+  double mx = 0, my = 0;
+  for (const auto& [x, y] : xy) mx += x, my += y;
+  mx /= static_cast<double>(xy.size()), my /= static_cast<double>(xy.size());
+  double sxy = 0, sxx = 0;
+  for (const auto& [x, y] : xy) sxy += (x - mx) * (y - my), sxx += (x - mx) * (x - mx);
+  return sxx > 0 ? sxy / sxx : 0.0;
+}
+
+// Area of the joints broken since t = 0 (the starter crack's are logged at t = 0).
+double area_broken_since_start(Simulation& sim) {
+  const Table& events = sim.world().store.table(solid::event_table);
+  const auto time = events.span<const double>("time");
+  const auto area = events.span<const double>("area");
+  double sum = 0.0;
+  for (size_t k = 0; k < events.size(); ++k)
+    if (time[k] > 0.0) sum += area[k];
+  return sum;
+}
 
 // A closed form of the KGD crack at time t: half-length, mouth opening and net pressure at the well.
-struct KgdClosedForm {
+struct ClosedForm {
   double length, opening, net_pressure;
 };
-using KgdVertex = std::function<KgdClosedForm(double t)>;
+using Vertex = std::function<ClosedForm(double t)>;
 
 // The toughness vertex of kgd_toughness.yaml (K' = 4 sqrt(2 / pi) K_Ic, Q0 per unit thickness, whole crack).
-KgdClosedForm toughness_vertex(double t) {
+ClosedForm toughness_vertex(double t) {
   const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 8.21e-4 / 0.0625, q = kEp * Q0 * t;
   return {0.9324 * std::pow(q / Kp, 2.0 / 3.0), 0.6828 * std::pow(Kp * Kp * Q0 * t / (kEp * kEp), 1.0 / 3.0),
           0.1831 * std::pow(Kp * Kp * Kp * Kp / q, 1.0 / 3.0)};
 }
 
 // The viscosity vertex of kgd_viscous.yaml (mu' = 12 mu; Adachi and Detournay 2002, as GEOS states it).
-KgdClosedForm viscosity_vertex(double t) {
+ClosedForm viscosity_vertex(double t) {
   const double mup = 12.0 * 4.0e-3, Q0 = 6.568e-3 / 0.0625;
   const double w0 = 1.134 * std::pow(mup * Q0 * Q0 * Q0 * t * t / kEp, 1.0 / 6.0);
   return {0.6152 * std::pow(kEp * Q0 * Q0 * Q0 / mup, 1.0 / 6.0) * std::pow(t, 2.0 / 3.0), w0,
           0.62 * std::sqrt(mup * Q0 * kEp) / w0};
 }
 
-KgdResult run_kgd(const std::string& file, const std::vector<std::string>& overrides, const KgdVertex& vertex,
-                  double confinement = 0.0) {
+// Where a case reads its crack: the network point nearest `centre` gives the mouth (KGD) or centre
+// (radial) opening; the length is the network's extent from the well (KGD) or the radius of the quarter
+// penny of the network's area (radial: the front on a lattice is jagged, its farthest point is not R).
+struct CrackGauge {
+  std::array<double, 3> centre;
+  bool quarter_penny;
+};
+constexpr CrackGauge kKgdGauge{{0.0, 0.0, 0.0625}, false};
+constexpr CrackGauge kRadialGauge{{0.0, 0.0, 0.0}, true};
+
+VertexResult run_against_vertex(const std::string& file, const std::vector<std::string>& overrides,
+                                const Vertex& vertex, double confinement = 0.0,
+                                const CrackGauge& gauge = kKgdGauge) {
   const double times[3] = {0.05, 0.075, 0.1};
   double sum[3][3] = {}, count[3] = {};
-  KgdResult r;
+  std::vector<std::pair<double, double>> area_dissipation;  // from the first time on
+  VertexResult r;
   const Scene scene = validation_scene(file, overrides);
   run_watching(scene, 2, [&](Simulation& sim) {
     const double t = sim.time();
@@ -158,12 +199,15 @@ KgdResult run_kgd(const std::string& file, const std::vector<std::string>& overr
     const double injected = metric(row, "flow_injected_volume");
     if (injected > 0)
       r.worst_mass = std::max(r.worst_mass, std::abs(metric(row, "flow_mass_error")) / (1000.0 * injected));
-    if (last) {
+    if (t >= times[0] - 0.01) {
       validation::Metrics m(validation::solid_of(sim));
       m.update(t);
-      r.kinetic = m["solid_kinetic_energy"];
-      r.work = m["solid_external_work"];
-      r.balance = m["solid_energy_balance_error"];
+      area_dissipation.emplace_back(area_broken_since_start(sim), m["solid_fracture_dissipation"]);
+      if (last) {
+        r.kinetic = m["solid_kinetic_energy"];
+        r.work = m["solid_external_work"];
+        r.balance = m["solid_energy_balance_error"];
+      }
     }
     if (window < 0) return;
     std::vector<XdmfGrid> grids;
@@ -171,36 +215,56 @@ KgdResult run_kgd(const std::string& file, const std::vector<std::string>& overr
     const XdmfGrid& g = grids.at(0);
     double best = INFINITY, w0 = 0.0;
     for (size_t p = 0; p < g.point_count; ++p) {
-      const double d = std::abs(g.points[3 * p]) + std::abs(g.points[3 * p + 2] - 0.0625);
+      double d = 0.0;
+      for (int c = 0; c < 3; ++c) d += std::abs(g.points[3 * p + size_t(c)] - gauge.centre[size_t(c)]);
       if (d < best) best = d, w0 = static_cast<const double*>(g.fields.at(0).data)[p];
     }
-    const KgdClosedForm exact = vertex(t);
-    sum[window][0] += metric(row, "flow_crack_extent") / exact.length;
+    const ClosedForm exact = vertex(t);
+    const double length = gauge.quarter_penny ? std::sqrt(4.0 * metric(row, "flow_crack_area") / M_PI)
+                                              : metric(row, "flow_crack_extent");
+    sum[window][0] += length / exact.length;
     sum[window][1] += w0 / exact.opening;
     sum[window][2] += (metric(row, "flow_well_pressure") - confinement) / exact.net_pressure;
     count[window] += 1.0;
   });
   for (int k = 0; k < 3; ++k)
     for (int m = 0; m < 3; ++m) r.ratio[k][m] = count[k] > 0 ? sum[k][m] / count[k] : 0.0;
+  r.energy_per_area = slope(area_dissipation);
   return r;
 }
 
-void expect_kgd(const KgdResult& r, double bound = 0.10) {
-  const char* names[3] = {"half-length", "mouth opening", "net well pressure"};
+void expect_vertex(const VertexResult& r, double bound = 0.10, const char* name = "KGD") {
+  const bool radial = std::string(name) != "KGD";
+  const char* names[3] = {radial ? "radius" : "half-length", radial ? "centre opening" : "mouth opening",
+                          "net well pressure"};
   const double times[3] = {0.05, 0.075, 0.1};
   for (int k = 0; k < 3; ++k) {
-    std::printf("KGD at t = %.3f s: half-length %+.1f %%, mouth opening %+.1f %%, net pressure %+.1f %%\n",
-                times[k], 100.0 * (r.ratio[k][0] - 1.0), 100.0 * (r.ratio[k][1] - 1.0),
+    std::printf("%s at t = %.3f s: %s %+.1f %%, %s %+.1f %%, net pressure %+.1f %%\n", name, times[k],
+                names[0], 100.0 * (r.ratio[k][0] - 1.0), names[1], 100.0 * (r.ratio[k][1] - 1.0),
                 100.0 * (r.ratio[k][2] - 1.0));
     for (int m = 0; m < 3; ++m) EXPECT_NEAR(r.ratio[k][m], 1.0, bound) << names[m] << " at t = " << times[k];
+  }
+  std::printf("%s fracture energy per new crack area %.2f J/m^2 (G_I = %.2f)\n", name, r.energy_per_area,
+              kGI);
+  // A straight front keeps its length, so its process zone's content is constant and the slope is G_I.
+  // A penny's front grows with R: the slope adds (zone content per front length) / R, 113 J/m^2 here.
+  if (!radial) {
+    EXPECT_NEAR(r.energy_per_area, kGI, 0.02 * kGI);
   }
   EXPECT_LT(r.worst_mass, 1e-12);
   EXPECT_LT(r.kinetic, 0.01 * r.work);            // quasi-static growth
   EXPECT_LT(std::abs(r.balance), 0.02 * r.work);  // the solid's energy balance
 }
 
+// The K-vertex of radial_toughness.yaml: Q0 the whole penny's rate (4 x the quarter model's).
+ClosedForm radial_toughness_vertex(double t) {
+  const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 4.0 * 8.0e-3, q = kEp * Q0 * t;
+  return {0.8546 * std::pow(q / Kp, 0.4), 0.6537 * std::pow(std::pow(Kp / kEp, 4.0) * Q0 * t, 0.2),
+          0.3004 * std::pow(std::pow(Kp, 6.0) / q, 0.2)};
+}
+
 TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
-  expect_kgd(run_kgd("kgd_toughness.yaml", {}, toughness_vertex));
+  expect_vertex(run_against_vertex("kgd_toughness.yaml", {}, toughness_vertex));
 }
 
 // The same with a viscous fluid, mu = 1e-6 Pa s: K = K' / (E'^3 mu' Q0)^(1/4) = 4.8, still in the
@@ -208,7 +272,7 @@ TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
 // vertices (the closure's active set). Measured at 0.05 / 0.075 / 0.1 s: half-length +5.9 / +4.0 / +2.1 %,
 // mouth opening +2.8 / +2.6 / +2.7 %, pressure +3.6 / +0.8 / -1.4 %; the solid's balance -1.7 % of the work.
 TEST(HydraulicFracture, KgdWithAViscousFluidInTheToughnessRegime) {
-  expect_kgd(run_kgd("kgd_toughness.yaml", {"fracture_flow.viscosity=1e-6"}, toughness_vertex));
+  expect_vertex(run_against_vertex("kgd_toughness.yaml", {"fracture_flow.viscosity=1e-6"}, toughness_vertex));
 }
 
 // KGD in the viscosity regime (scenes/validation/kgd_viscous.yaml: mu = 4 mPa s, K = 0.36, 3 MPa across
@@ -219,7 +283,7 @@ TEST(HydraulicFracture, KgdWithAViscousFluidInTheToughnessRegime) {
 // Measured: half-length +13.1 / +10.5 / +9.3 %, mouth opening -3.5 / -3.2 / -2.9 %, net pressure -6.8 /
 // -9.2 / -11.9 % (the length's error falls as the starter's memory fades; the pressure's grows).
 TEST(HydraulicFracture, KgdViscosityDominatedFollowsTheMVertex) {
-  expect_kgd(run_kgd("kgd_viscous.yaml", {}, viscosity_vertex, 3.0e6), 0.15);
+  expect_vertex(run_against_vertex("kgd_viscous.yaml", {}, viscosity_vertex, 3.0e6), 0.15);
 }
 
 // The same crack held at 1 MPa by a pressure-controlled well: it takes in Sneddon's volume
@@ -308,6 +372,22 @@ TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {
   const auto resumed = test::stop_and_resume(scene, dir.path(), 2, 400);
   ASSERT_TRUE(resumed.rest.completed);
   EXPECT_EQ(hex64(resumed.rest.state_hash), reference);
+}
+
+// Radial (penny) fracture in the toughness regime (scenes/validation/radial_toughness.yaml: zero
+// viscosity, K_m = infinity, quarter model on a graded lattice): radius (of the quarter penny with the
+// network's area), centre opening and well pressure against the K-vertex R = 0.8546 (E' Q0 t / K')^(2/5),
+// w0 = 0.6537 (K'^4 Q0 t / E'^4)^(1/5), p = 0.3004 (K'^6 / (E' Q0 t))^(1/5) at 0.05 / 0.075 / 0.1 s, as
+// the KGD case: the mean of measured / closed form over the 10 ms before each time, bound 10 % (the
+// issue's), for the same reasons (cohesive zone of l_ch = 4 cells, linear tets, finite block: 2.7 final
+// radii to the faces). Measured: radius +7.0 / +5.7 / +5.2 %, centre opening +1.4 / +1.6 / +1.5 %, net
+// pressure -0.1 / -1.1 / -2.4 %. The fracture energy is checked on KGD only: a penny's front lengthens as
+// it grows, and the process zone along it with it (the dissipation's slope against the broken area is
+// 113 J/m^2 for G_I = 93.75; fits with a term per front length give 87 - 98 J/m^2 depending on the
+// model of the zone, too uncertain for a bound).
+TEST(HydraulicFracture, RadialToughnessDominatedFollowsTheKVertex) {
+  expect_vertex(run_against_vertex("radial_toughness.yaml", {}, radial_toughness_vertex, 0.0, kRadialGauge),
+                0.10, "Radial");
 }
 
 }  // namespace

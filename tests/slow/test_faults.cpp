@@ -86,7 +86,7 @@ void expect_readable(const fs::path& out, long kill_at) {
     } else if (name.ends_with(".xdmf")) {
       EXPECT_NE(read(e.path()).find("</Xdmf>"), std::string::npos);
     } else if (name.ends_with(".json")) {
-      EXPECT_NO_THROW((void)nlohmann::json::parse(read(e.path())));
+      EXPECT_NO_THROW(EXPECT_TRUE(nlohmann::json::parse(read(e.path())).is_object()));
     } else if (name == "timeseries.csv") {
       std::ifstream in(e.path());
       std::string line;

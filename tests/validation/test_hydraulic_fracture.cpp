@@ -149,7 +149,7 @@ double area_broken_since_start(Simulation& sim) {
 }
 
 // A closed form of the KGD crack at time t: half-length, mouth opening and net pressure at the well.
-struct ClosedForm {
+struct ClosedForm {  // NaN where the closed form gives no figure to compare
   double length, opening, net_pressure;
 };
 using Vertex = std::function<ClosedForm(double t)>;
@@ -242,7 +242,10 @@ void expect_vertex(const VertexResult& r, double bound = 0.10, const char* name 
     std::printf("%s at t = %.3f s: %s %+.1f %%, %s %+.1f %%, net pressure %+.1f %%\n", name, times[k],
                 names[0], 100.0 * (r.ratio[k][0] - 1.0), names[1], 100.0 * (r.ratio[k][1] - 1.0),
                 100.0 * (r.ratio[k][2] - 1.0));
-    for (int m = 0; m < 3; ++m) EXPECT_NEAR(r.ratio[k][m], 1.0, bound) << names[m] << " at t = " << times[k];
+    for (int m = 0; m < 3; ++m)  // NaN: a figure the closed form does not give (ClosedForm)
+      if (!std::isnan(r.ratio[k][m]) || m == 0) {
+        EXPECT_NEAR(r.ratio[k][m], 1.0, bound) << names[m] << " at t = " << times[k];
+      }
   }
   std::printf("%s fracture energy per new crack area %.2f J/m^2 (G_I = %.2f)\n", name, r.energy_per_area,
               kGI);
@@ -261,6 +264,13 @@ ClosedForm radial_toughness_vertex(double t) {
   const double Kp = 4.0 * std::sqrt(2.0 / M_PI) * 1.0e6, Q0 = 4.0 * 8.0e-3, q = kEp * Q0 * t;
   return {0.8546 * std::pow(q / Kp, 0.4), 0.6537 * std::pow(std::pow(Kp / kEp, 4.0) * Q0 * t, 0.2),
           0.3004 * std::pow(std::pow(Kp, 6.0) / q, 0.2)};
+}
+
+// The M-vertex radius of radial_viscous.yaml (mu' = 12 mu, Q0 the whole penny's rate). Its opening and
+// pressure are not compared: the pressure is log-singular at the well.
+ClosedForm radial_viscosity_vertex(double t) {
+  const double mup = 12.0 * 4.0e-3, Q0 = 4.0 * 3.18e-2;
+  return {0.6976 * std::pow(kEp * Q0 * Q0 * Q0 * std::pow(t, 4.0) / mup, 1.0 / 9.0), NAN, NAN};
 }
 
 TEST(HydraulicFracture, KgdToughnessDominatedFollowsTheClosedForm) {
@@ -388,6 +398,16 @@ TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {
 TEST(HydraulicFracture, RadialToughnessDominatedFollowsTheKVertex) {
   expect_vertex(run_against_vertex("radial_toughness.yaml", {}, radial_toughness_vertex, 0.0, kRadialGauge),
                 0.10, "Radial");
+}
+
+// Radial fracture in the viscosity regime (scenes/validation/radial_viscous.yaml: mu = 4 mPa s, K_m = 0.46
+// at 0.1 s, 3 MPa across the crack plane to close the dry lag as in kgd_viscous.yaml): the radius against
+// the M-vertex R = 0.6976 (E' Q0^3 t^4 / mu')^(1/9) at 0.05 / 0.075 / 0.1 s, bound 15 % (the for
+// this regime: the starter penny is a memory the self-similar solution lacks, the measured radius counts
+// the wet process zone, one mesh). Measured: +9.4 / +7.9 / +7.1 %.
+TEST(HydraulicFracture, RadialViscosityDominatedFollowsTheMVertex) {
+  expect_vertex(run_against_vertex("radial_viscous.yaml", {}, radial_viscosity_vertex, 3.0e6, kRadialGauge),
+                0.15, "Radial");
 }
 
 }  // namespace

@@ -311,7 +311,10 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     role_[v] = role[r];
     wetting_[v] = wetting[r];
     exchanged_[v] = 0.0;
-    if (spec_.vent_pressure && vent_row_[r] && r != well_row_) {
+    // A vent holds its pressure once the fluid has reached it (where a wet crack meets an outer face):
+    // before that it is a dry part of the crack like any other, and nothing enters from outside.
+    const bool reached = FlowRole(role[r]) == FlowRole::wet || FlowRole(role[r]) == FlowRole::fixed;
+    if (spec_.vent_pressure && vent_row_[r] && r != well_row_ && reached) {
       role_[v] = uint8_t(FlowRole::fixed);
       fixed_[v] = *spec_.vent_pressure;
     }

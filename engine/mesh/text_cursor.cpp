@@ -16,9 +16,6 @@ bool is_space(char c) {
 
 }  // namespace
 
-TextCursor::TextCursor(std::string_view text, std::string path)
-    : text_(text), hash_(fnv1a64(text.data(), text.size())), path_(std::move(path)), end_(text.size()) {}
-
 TextCursor::TextCursor(InputFileReader& source, std::string path, size_t window_bytes)
     : source_(&source),
       window_(std::max<size_t>(window_bytes, 16)),
@@ -26,7 +23,7 @@ TextCursor::TextCursor(InputFileReader& source, std::string path, size_t window_
       path_(std::move(path)) {}
 
 bool TextCursor::more(size_t& keep_from) {
-  if (exhausted()) return false;
+  if (at_eof_) return false;
   const size_t kept = end_ - keep_from;
   if (kept == window_.size())
     fail("a token or quoted string of at most " + std::to_string(window_.size()) + " bytes", "a longer one");
@@ -143,7 +140,7 @@ bool TextCursor::skip_past_line_starting(std::string_view marker) {
   for (;;) {
     const void* found = std::memchr(data() + pos_ + scanned, '\n', end_ - pos_ - scanned);
     size_t line_end = found ? static_cast<size_t>(static_cast<const char*>(found) - data()) : end_;
-    if (!found && !exhausted()) {
+    if (!found && !at_eof_) {
       if (pos_ == 0 && end_ == window_.size()) {
         too_long = true;
         pos_ = end_;

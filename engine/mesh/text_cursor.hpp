@@ -1,9 +1,9 @@
 #pragma once
 // A forward-only tokenizer over a text file, tracking line numbers so that every parse error can say
-// "path:line: expected ..., found ...". The text is either held in memory or streamed from a file
-// through a window of fixed size, so that reading a mesh of gigabytes needs the window, not the file, in
-// memory. Tokens are whitespace-separated views into the text or the window (no allocation), valid until
-// the next call; numbers are parsed with std::from_chars, which is exact and fast.
+// "path:line: expected ..., found ...". The file is streamed through a window of fixed size, so that
+// reading a mesh of gigabytes needs the window, not the file, in memory. Tokens are whitespace-separated
+// views into the window (no allocation), valid until the next call; numbers are parsed with
+// std::from_chars, which is exact and fast.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -16,8 +16,6 @@ namespace rift {
 
 class TextCursor {
  public:
-  // Over text held in memory.
-  TextCursor(std::string_view text, std::string path);
   // Over a file read through `source`, `window_bytes` at a time: a token or quoted string longer than the
   // window is an error; a longer line is fine where it is skipped.
   TextCursor(InputFileReader& source, std::string path, size_t window_bytes);
@@ -51,13 +49,11 @@ class TextCursor {
  private:
   void skip_space();
   // Reads more of the file behind the text at hand, first dropping what lies before `keep_from` (which
-  // becomes 0; pos_ moves with it). False at the end of the file or for text held in memory.
+  // becomes 0; pos_ moves with it). False at the end of the file.
   bool more(size_t& keep_from);
-  bool exhausted() const { return source_ == nullptr || at_eof_; }
-  const char* data() const { return source_ ? window_.data() : text_.data(); }
+  const char* data() const { return window_.data(); }
 
-  std::string_view text_;  // text held in memory, or empty when streaming
-  InputFileReader* source_ = nullptr;
+  InputFileReader* source_;
   std::vector<char> window_;
   bool at_eof_ = false;
   uint64_t hash_ = 0;

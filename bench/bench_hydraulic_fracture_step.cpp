@@ -1,0 +1,79 @@
+// The coupled step of a hydraulic fracture (the jointed solid and the fluid in its cracks) beside the same
+// scene dry, in the same run: scenes/validation/radial_toughness.yaml, the quarter penny on a graded
+// lattice of 127,000 tets (one scene definition for the CLI, the tests and this benchmark). The issue's
+// budget: the fracture flow at most 25 % of the solid step at 1e5 tets. Items are tet-steps.
+// Arguments: threads; flow = 0 (the scene without fracture_flow), 1 (zero viscosity, as the scene: one
+// pressure per crack), 2 (water, 1 mPa s: a flow solve every step). The first 400 steps (the starter
+// crack filling) run before the timing. Counters: the network's triangles and the fracture flow's share
+// of the step's system time. Tiny (RIFT_BENCH_TINY): the same scene on 0.25 m cells.
+#include <benchmark/benchmark.h>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/bench_common.hpp"
+#include "engine/scene/load_scene.hpp"
+#include "engine/simulation.hpp"
+#include "systems/fracture_flow/fracture_flow_tables.hpp"
+
+namespace {
+
+constexpr int64_t kWarmUpSteps = 400;
+
+std::unique_ptr<rift::Simulation> start(int threads, int flow) {
+  std::vector<std::string> overrides;
+  if (flow == 2) overrides.push_back("fracture_flow.viscosity=1.0e-3");
+  if (rift::bench::tiny())  // coarser cells, and the fracture zone one of their layers either side
+    for (const char* o : {"mesh.generate.graded.size=0.25", "solid.fracture.box_min=[-1, -1, -0.2]",
+                          "solid.fracture.box_max=[3, 3, 0.2]"})
+      overrides.push_back(o);
+  rift::Scene scene =
+      rift::load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/radial_toughness.yaml", overrides);
+  if (flow == 0) scene.fracture_flow.reset();
+  rift::RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  o.threads = threads;
+  spdlog::set_level(spdlog::level::warn);
+  auto sim = std::make_unique<rift::Simulation>(std::move(scene), o);
+  for (int64_t s = 0; s < (rift::bench::tiny() ? 4 : kWarmUpSteps); ++s) sim->step_once();
+  return sim;
+}
+
+void BM_HydraulicFractureStep(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  const int flow = static_cast<int>(state.range(1));
+  const auto sim = start(threads, flow);
+  const rift::Store& store = sim->world().store;
+  const size_t tets = store.table("solid_tet").size();
+  auto seconds = [&] {
+    double all = 0.0, fracture_flow = 0.0;
+    for (const auto& t : sim->graph().timings()) {
+      if (t.name == "output" || t.name == "checkpoint") continue;
+      all += t.seconds;
+      if (t.name == "fracture_flow") fracture_flow += t.seconds;
+    }
+    return std::pair{all, fracture_flow};
+  };
+  const auto before = seconds();
+  for (auto _ : state) sim->step_once();
+  const auto after = seconds();
+  state.counters["tets"] = static_cast<double>(tets);
+  state.counters["threads"] = threads;
+  if (flow > 0) {
+    state.counters["network_vertices"] =
+        static_cast<double>(store.table(rift::fracture_flow::vertex_table).size());
+    state.counters["flow_share"] = (after.second - before.second) / (after.first - before.first);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(tets));
+}
+
+}  // namespace
+
+BENCHMARK(BM_HydraulicFractureStep)
+    ->ArgsProduct({{1, 2}, {0, 1, 2}})
+    ->ArgNames({"threads", "flow"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();

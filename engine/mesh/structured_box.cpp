@@ -8,22 +8,18 @@
 
 namespace rift {
 
-// The Kuhn lattice of lattice_box.hpp, moved to [lo, hi].
+// The Kuhn lattice of lattice_box.hpp on [lo, hi]: its uniform axes, each coordinate lo + (hi - lo) i / n as
+// the lattice computes it, and the last one hi exactly, so boundary tests can compare coordinates.
 TetMesh structured_box(const StructuredBoxSpec& spec) {
+  std::array<std::vector<double>, 3> axes;
   for (int d = 0; d < 3; ++d) {
     if (spec.cells[d] < 1) throw std::invalid_argument("structured_box: cells must be >= 1");
     if (!(spec.hi[d] > spec.lo[d])) throw std::invalid_argument("structured_box: hi must exceed lo");
+    const double size = spec.hi[d] - spec.lo[d];
+    for (int i = 0; i <= spec.cells[d]; ++i)
+      axes[d].push_back(i == spec.cells[d] ? spec.hi[d] : spec.lo[d] + size * i / spec.cells[d]);
   }
-  TetMesh mesh = generate_lattice_box(
-      spec.cells, {spec.hi[0] - spec.lo[0], spec.hi[1] - spec.lo[1], spec.hi[2] - spec.lo[2]});
-  const int n[3] = {spec.cells[0] + 1, spec.cells[1] + 1, spec.cells[2] + 1};
-  for (size_t v = 0; v < mesh.nodes.size(); ++v) {
-    const int index[3] = {int(v % n[0]), int(v / n[0] % n[1]), int(v / (n[0] * n[1]))};
-    for (int d = 0; d < 3; ++d)
-      // The last node of each row is hi exactly, so boundary tests can compare coordinates.
-      mesh.nodes[v][d] = index[d] == spec.cells[d] ? spec.hi[d] : spec.lo[d] + mesh.nodes[v][d];
-  }
-  return mesh;
+  return structured_box_on_axes(axes);
 }
 
 TetMesh structured_box_on_axes(const std::array<std::vector<double>, 3>& coordinates) {

@@ -120,7 +120,29 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   }
 }
 
-// graded: the fine box must overlap the box along every axis (checked when both were read).
+// Reports the fine box's first problem along axis `a`; true when there was one.
+bool fine_axis_error(MapReader& r, const LatticeGradingSpec& g, const MeshGenerateSpec& box, bool box_ok,
+                     int a) {
+  const double lo = box.origin[a], hi = box.origin[a] + box.size[a];
+  const std::string axis(kAxes[a]);
+  if (!(g.fine_max[a] > g.fine_min[a])) {
+    r.error("fine_max",
+            "each coordinate above fine_min's (" + message_real(g.fine_min[a]) + " along " + axis + ")");
+    return true;
+  }
+  if (box_ok && !(g.fine_max[a] > lo && g.fine_min[a] < hi)) {
+    r.error("fine_max", "a fine box that overlaps the box along " + axis + " " + interval_text(lo, hi));
+    return true;
+  }
+  if (r.ok("size") && (std::min(hi, g.fine_max[a]) - std::max(lo, g.fine_min[a])) / g.size > 1e6) {
+    r.error("size", "at most 1e6 cells across the fine box along " + axis);
+    return true;
+  }
+  return false;
+}
+
+// graded: the fine box must overlap the box along every axis (checked when both were read); one message
+// at most, for the first axis that fails.
 LatticeGradingSpec read_grading(MapReader& r, const MeshGenerateSpec& box, bool box_ok) {
   LatticeGradingSpec spec;
   spec.fine_min = r.vec3("fine_min", any_real("m"), std::nullopt);
@@ -128,20 +150,7 @@ LatticeGradingSpec read_grading(MapReader& r, const MeshGenerateSpec& box, bool 
   spec.size = r.real("size", positive("m"), std::nullopt);
   spec.growth = r.real("growth", RealRule{"", 1.0, 2.0, false, false}, 1.25);
   if (r.ok("fine_min") && r.ok("fine_max"))
-    for (int a = 0; a < 3; ++a) {
-      const double lo = box.origin[a], hi = box.origin[a] + box.size[a];
-      if (!(spec.fine_max[a] > spec.fine_min[a]))
-        r.error("fine_max", "each coordinate above fine_min's (" + message_real(spec.fine_min[a]) +
-                                " along " + std::string(kAxes[a]) + ")");
-      else if (box_ok && !(spec.fine_max[a] > lo && spec.fine_min[a] < hi))
-        r.error("fine_max", "a fine box that overlaps the box along " + std::string(kAxes[a]) + " " +
-                                interval_text(lo, hi));
-      else if (r.ok("size") &&
-               (std::min(hi, spec.fine_max[a]) - std::max(lo, spec.fine_min[a])) / spec.size > 1e6)
-        r.error("size", "at most 1e6 cells across the fine box along " + std::string(kAxes[a]));
-      else
-        continue;
-      break;
+    for (int a = 0; a < 3 && !fine_axis_error(r, spec, box, box_ok, a); ++a) {
     }
   r.finish();
   return spec;

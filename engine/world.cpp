@@ -10,6 +10,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/fnv1a.hpp"
 #include "engine/mesh/block_assembly.hpp"
+#include "engine/mesh/borehole_box.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/cylinder_generator.hpp"
 #include "engine/mesh/element_estimate.hpp"
@@ -54,6 +55,8 @@ TetMesh load_mesh(const MeshSpec& spec, const std::string& section) {
   check_lattice_budget(*spec.generate);
   if (spec.generate->shape == MeshGenerateSpec::Shape::blocks)
     return generate_block_assembly(spec.generate->blocks);
+  if (const auto& hole = spec.generate->borehole)
+    return borehole_box(borehole_box_spec(spec.generate->origin, spec.generate->size, *hole));
   if (const auto& g = spec.generate->graded) {
     return structured_box_on_axes(graded_lattice_axes(spec.generate->origin, spec.generate->size, g->fine_min,
                                                       g->fine_max, g->size, g->growth));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/borehole_box.hpp"
 #include "engine/mesh/graded_axis.hpp"
 
 namespace rift {
@@ -90,6 +91,8 @@ void check_lattice_budget(const MeshGenerateSpec& spec) {
     total =
         6.0 * static_cast<double>(n[0] - 1) * static_cast<double>(n[1] - 1) * static_cast<double>(n[2] - 1);
   }
+  if (const auto& hole = spec.borehole)
+    total = static_cast<double>(borehole_box_counts(borehole_box_spec(spec.origin, spec.size, *hole)).tets());
   for (const BlockSpec& b : spec.blocks) total += tets(b.cells);
   if (total <= static_cast<double>(spec.max_elements)) return;
   throw Error(fmt::format(

@@ -5,6 +5,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/fnv1a.hpp"
 #include "engine/io/input_file.hpp"
+#include "engine/mesh/borehole_box.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/scene/number_text.hpp"
 #include "engine/scene/scene_sections.hpp"
@@ -156,6 +157,31 @@ LatticeGradingSpec read_grading(MapReader& r, const MeshGenerateSpec& box, bool 
   return spec;
 }
 
+// borehole: the hole must fit the box (checked by the generator's own count, which names the problem).
+BoreholeMeshSpec read_borehole(MapReader& r, const MeshGenerateSpec& box, bool box_ok) {
+  BoreholeMeshSpec spec;
+  spec.axis_x = r.real("axis_x", any_real("m"), std::nullopt);
+  spec.axis_y = r.real("axis_y", any_real("m"), std::nullopt);
+  spec.radius = r.real("radius", positive("m"), std::nullopt);
+  spec.size = r.real("size", positive("m"), std::nullopt);
+  if (r.ok("radius") && r.ok("size") && spec.size > spec.radius)
+    r.error("size", "a cell size at the wall of at most the radius (" + message_real(spec.radius) + " m)");
+  // Default: square cells at the wall, each ring as much thicker as its circumference is longer.
+  const double square =
+      r.ok("radius") && r.ok("size") ? std::min(2.0, std::exp(spec.size / spec.radius)) : 1.0;
+  spec.growth = r.real("growth", RealRule{"", 1.0, 2.0, false, false}, square);
+  if (box_ok && r.ok("axis_x") && r.ok("axis_y") && r.ok("radius") && r.ok("size") && r.ok("growth") &&
+      spec.size <= spec.radius) {
+    try {
+      borehole_box_counts(borehole_box_spec(box.origin, box.size, spec));
+    } catch (const Error& e) {
+      r.error("radius", std::string("a borehole that fits the box: ") + e.what());
+    }
+  }
+  r.finish();
+  return spec;
+}
+
 // cells: [nx, ny, nz], whole numbers >= 1.
 std::optional<std::array<int, 3>> read_cells(MapReader& g) {
   const std::array<double, 3> c = g.vec3("cells", RealRule{"", 1.0, 1e6, false, false}, std::nullopt);
@@ -183,6 +209,22 @@ MeshGenerateSpec read_generate(MapReader& g) {
     return spec;
   }
   spec.origin = g.vec3("origin", any_real("m"), std::array<double, 3>{});
+  if (g.has("borehole") && spec.shape == MeshGenerateSpec::Shape::box) {  // a box with a hole
+    MapReader r = g.section("borehole", false);
+    spec.borehole = read_borehole(r, spec, g.has("box") && g.ok("box") && g.ok("origin"));
+    for (auto key : {"cells", "size_min", "size_max", "grading", "seed", "notches", "graded"})
+      g.forbid(key, "with borehole (the hole's lattice has its own sizes; no seed or notches)");
+    g.finish();
+    return spec;
+  }
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder) {
+    g.forbid("borehole", "for a cylinder (a borehole is cut in a box)");
+  } else {
+    g.declare("borehole");
+    MapReader unused =
+        MapReader::silenced(g.context(), g.key_path("borehole"), g.doc_key_path("borehole"), g.where());
+    read_borehole(unused, spec, false);
+  }
   if (g.has("graded") && spec.shape == MeshGenerateSpec::Shape::box) {  // a graded lattice
     MapReader r = g.section("graded", false);
     spec.graded = read_grading(r, spec, g.has("box") && g.ok("box") && g.ok("origin"));

@@ -131,6 +131,15 @@ void emit_mesh(Lines& o, const MeshSpec& m, int indent = 0) {
     o.line(i + 2, "box", vec3(g.size));
   }
   o.line(i + 2, "origin", vec3(g.origin));
+  if (g.borehole) {  // a hole's lattice: the reader forbids the sizing keys
+    o.line(i + 2, "borehole");
+    o.line(i + 3, "axis_x", yaml_real(g.borehole->axis_x));
+    o.line(i + 3, "axis_y", yaml_real(g.borehole->axis_y));
+    o.line(i + 3, "radius", yaml_real(g.borehole->radius));
+    o.line(i + 3, "size", yaml_real(g.borehole->size));
+    o.line(i + 3, "growth", yaml_real(g.borehole->growth));
+    return;
+  }
   if (g.graded) {  // a graded lattice: the reader forbids the sizing keys
     o.line(i + 2, "graded");
     o.line(i + 3, "fine_min", vec3(g.graded->fine_min));
@@ -329,6 +338,11 @@ void emit_fracture_flow(Lines& o, const FractureFlowSpec& f) {
   o.line(2, "point", vec3(f.point));
   if (f.rate) emit_time_function(o, 2, "rate", *f.rate);
   if (f.pressure) emit_time_function(o, 2, "pressure", *f.pressure);
+  if (!f.well_surfaces.empty()) {
+    std::string wall;
+    for (const auto& v : f.well_surfaces) wall += (wall.empty() ? "" : ", ") + quoted(v);
+    o.line(2, "surfaces", "[" + wall + "]");
+  }
   o.line(2, "well_volume", yaml_real(f.well_volume));
   o.line(2, "well_compliance", yaml_real(f.well_compliance));
   o.line(1, "vent_pressure", f.vent_pressure ? yaml_real(*f.vent_pressure) : "null");

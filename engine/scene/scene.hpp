@@ -53,6 +53,15 @@ struct LatticeGradingSpec {
   double growth = 1.25;                          // ratio of neighbouring cells outside it
 };
 
+// A box with a cylindrical hole along z through (axis_x, axis_y), an O-grid lattice graded towards the
+// hole (engine/mesh/borehole_box.hpp).
+struct BoreholeMeshSpec {
+  double axis_x = 0.0, axis_y = 0.0;  // [m], absolute: inside the box, on a side or a corner of it
+  double radius = 0.0;                // [m]
+  double size = 0.0;                  // cell size at the wall [m]
+  double growth = 1.0;                // ratio of neighbouring rings' radial sizes
+};
+
 struct MeshGenerateSpec {
   enum class Shape { box, cylinder, blocks };
   Shape shape = Shape::box;
@@ -70,6 +79,8 @@ struct MeshGenerateSpec {
   std::optional<std::array<int, 3>> cells;
   // box only, instead of cells and sizing: a Kuhn lattice graded from a fine box outward (graded_axis.hpp)
   std::optional<LatticeGradingSpec> graded;
+  // box only, instead of cells and sizing: a hole along z, the lattice graded towards it
+  std::optional<BoreholeMeshSpec> borehole;
   // The mesh section's max_elements and its key path: meshing is refused, before it starts, when it is
   // expected to make more tets (element_estimate.hpp; a lattice's count is exact).
   uint64_t max_elements = kDefaultMaxElements;
@@ -303,8 +314,11 @@ struct FractureFlowSpec {
   // The pressure solve: 0 automatic (factorisation below 2000 network vertices, CG above), 1 the
   // factorisation, 2 conjugate gradients (systems/fracture_flow/network_flow.hpp).
   int solver = 0;
-  // The well: the crack vertex nearest `point` (within an element of it), given extra storage.
+  // The well: the crack vertex nearest `point` (within an element of it), given extra storage; or, with
+  // well_surfaces, those surfaces (a borehole's wall): one lumped vertex that every crack point on them
+  // joins, whose pressure loads them. `point` then only places the well (extents are measured from it).
   std::array<double, 3> point{};
+  std::vector<std::string> well_surfaces;
   std::optional<TimeFunction> rate;      // injected volume rate at rho0 [m^3/s] (one of rate, pressure)
   std::optional<TimeFunction> pressure;  // well pressure [Pa]
   double well_volume = 0.0;              // [m^3]: the borehole and line the injection fills first

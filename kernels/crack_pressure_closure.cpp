@@ -27,6 +27,19 @@ void add_open_area_vectors(std::span<const int32_t> corner_entries, std::span<co
     }
 }
 
+void add_wall_area_vectors(std::span<const int32_t> face_nodes, std::span<const int32_t> face_entries,
+                           std::span<const double> x, std::span<double> area_vector) {
+  for (size_t f = 0; f < face_nodes.size() / 3; ++f) {
+    const double* p[3];
+    for (size_t k = 0; k < 3; ++k) p[k] = &x[3 * size_t(face_nodes[3 * f + k])];
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double w[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    for (size_t k = 0; k < 3; ++k)
+      for (size_t d = 0; d < 3; ++d) area_vector[3 * size_t(face_entries[3 * f + k]) + d] -= n[d] / 6.0;
+  }
+}
+
 double closure_weight(const CrackClosureNodes& nodes, size_t i) {
   const size_t n = size_t(nodes.node[i]);
   const std::span<const double> open =

@@ -43,6 +43,14 @@ void add_open_area_vectors(std::span<const int32_t> corner_entries, std::span<co
                            std::span<const double> area, std::span<const double> opening, double floor,
                            std::span<double> open_area_vector);
 
+// A wetted wall (a borehole): each face pushes on the rock with p A along its inward normal, A/3 on each
+// corner. face_nodes: 3 per face, its solid nodes, ordered so that (x1 - x0) x (x2 - x0) points out of
+// the rock; face_entries: 3 per face, the same corners' entries (rows of area_vector); x: 3 per solid
+// node. Adds -(x1 - x0) x (x2 - x0) / 6 to each corner's area vector, so that a . dx is the hole's
+// volume change, as with the crack faces.
+void add_wall_area_vectors(std::span<const int32_t> face_nodes, std::span<const int32_t> face_entries,
+                           std::span<const double> x, std::span<double> area_vector);
+
 // One entry's share of its vertex's compliance, over dt^2 g: sum over free components of a_open . a / m.
 double closure_weight(const CrackClosureNodes& nodes, size_t entry);
 

@@ -37,6 +37,13 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f) {
     well.error(by_rate ? "pressure" : "rate",
                "one of rate (m^3/s) and pressure (Pa): the well is driven by one",
                by_rate ? "both are given" : "neither is given");
+  if (well.has("surfaces")) {  // a borehole: the wall is the well (absent: the nearest crack vertex)
+    spec.well_surfaces = well.string_list("surfaces", {});
+    if (well.ok("surfaces") && spec.well_surfaces.empty())
+      well.error("surfaces", "a list of at least one surface name (the well's wall)", "an empty list");
+  } else {
+    well.declare("surfaces");
+  }
   spec.well_volume = well.real("well_volume", non_negative("m^3"), 0.0);
   spec.well_compliance = well.real("well_compliance", non_negative("m^3/Pa"), 0.0);
   well.finish();

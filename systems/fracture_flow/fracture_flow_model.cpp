@@ -1,11 +1,14 @@
 #include "systems/fracture_flow/fracture_flow_model.hpp"
 
 #include <algorithm>
+#include <array>
+#include <map>
 
 #include "engine/core/error.hpp"
 #include "engine/scene/output_fields.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
 #include "systems/solid_model.hpp"
+#include "systems/solid_tables.hpp"
 
 namespace rift {
 
@@ -30,6 +33,62 @@ std::vector<uint8_t> vent_vertices(const TetMesh& mesh, const std::vector<std::s
       for (int32_t v : mesh.triangles[t]) on[size_t(v)] = 1;
   return on;
 }
+
+// The well's wall (fracture_flow.injection.surfaces): the faces of the named surfaces as solid node
+// triples whose normal points out of the rock (each boundary triangle is the face of one tet; its fourth
+// node is inside), and the mesh vertices on them.
+WellWall well_wall(const Store& store, const TetMesh& mesh, const std::vector<std::string>& names) {
+  WellWall wall;
+  if (names.empty()) return wall;
+  std::vector<uint8_t> chosen(mesh.surface_names.size(), 0);
+  for (const auto& name : names) {
+    const auto it = std::find(mesh.surface_names.begin(), mesh.surface_names.end(), name);
+    if (it == mesh.surface_names.end()) {
+      std::string known;
+      for (const auto& s : mesh.surface_names) known += (known.empty() ? "" : ", ") + s;
+      throw Error("fracture_flow.injection.surfaces: no surface '" + name +
+                  "' in the mesh (it has: " + known + ")");
+    }
+    chosen[size_t(it - mesh.surface_names.begin())] = 1;
+  }
+  const Table& nodes = store.table(solid::node_table);
+  const auto node_vertex = nodes.span<const int32_t>("vertex");
+  const auto x0 = nodes.span<const double>("x0");
+  const auto tet_nodes = store.table(solid::tet_table).span<const int32_t>("nodes");
+  std::map<std::array<int32_t, 3>, std::pair<size_t, int>> face_of;  // sorted mesh vertices -> tet, corner
+  for (size_t t = 0; 4 * t < tet_nodes.size(); ++t)
+    for (int k = 0; k < 4; ++k) {
+      std::array<int32_t, 3> f{};
+      for (int c = 0; c < 3; ++c)
+        f[size_t(c)] = node_vertex[size_t(tet_nodes[4 * t + size_t((k + 1 + c) % 4)])];
+      std::sort(f.begin(), f.end());
+      face_of[f] = {t, k};
+    }
+  wall.on_wall.assign(mesh.nodes.size(), 0);
+  for (size_t tri = 0; tri < mesh.triangles.size(); ++tri) {
+    if (!chosen[size_t(mesh.triangle_surface[tri])]) continue;
+    std::array<int32_t, 3> f = mesh.triangles[tri];
+    for (int32_t v : f) wall.on_wall[size_t(v)] = 1;
+    std::sort(f.begin(), f.end());
+    const auto it = face_of.find(f);
+    if (it == face_of.end())
+      throw Error(
+          "fracture_flow.injection.surfaces: a triangle of the wall is not a face of any tetrahedron");
+    const auto [t, k] = it->second;
+    int32_t corner[3], apex = tet_nodes[4 * t + size_t(k)];
+    for (int c = 0; c < 3; ++c) corner[c] = tet_nodes[4 * t + size_t((k + 1 + c) % 4)];
+    auto at = [&](int32_t n, int d) { return x0[3 * size_t(n) + size_t(d)]; };
+    double u[3], w[3], a[3];
+    for (int d = 0; d < 3; ++d)
+      u[d] = at(corner[1], d) - at(corner[0], d), w[d] = at(corner[2], d) - at(corner[0], d),
+      a[d] = at(apex, d) - at(corner[0], d);
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    if (n[0] * a[0] + n[1] * a[1] + n[2] * a[2] > 0) std::swap(corner[1], corner[2]);
+    wall.face_nodes.insert(wall.face_nodes.end(), corner, corner + 3);
+  }
+  return wall;
+}
+
 }  // namespace
 
 FractureFlowModel::FractureFlowModel(Store& store, SolidModel& solid, const TetMesh& mesh,
@@ -37,7 +96,8 @@ FractureFlowModel::FractureFlowModel(Store& store, SolidModel& solid, const TetM
     : store_(store), spec_(spec) {
   solid.accept_crack_fluid_forces();
   system_ = std::make_unique<FractureFlowSystem>(store, spec, solid.spec().mass_damping,
-                                                 vent_vertices(mesh, spec.vent_surfaces));
+                                                 vent_vertices(mesh, spec.vent_surfaces),
+                                                 well_wall(store, mesh, spec.well_surfaces));
 }
 
 std::optional<std::string> FractureFlowModel::check_health(const StepContext&) {

@@ -16,36 +16,48 @@ using fracture_flow::books_table;
 using fracture_flow::vertex_table;
 
 FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
-                                       std::vector<uint8_t> vent_vertex)
+                                       std::vector<uint8_t> vent_vertex, WellWall wall)
     : store_(store),
       spec_(spec),
       eos_{spec.density, spec.reference_pressure, spec.bulk_modulus},
       mass_damping_(std::move(mass_damping)),
+      wall_(std::move(wall)),
       flow_(eos_, spec.viscosity, spec.lag_pressure, NetworkSolver(spec.solver)) {
-  // One row per mesh vertex that a joint touches, in vertex order.
+  // One row per mesh vertex that a joint touches, in vertex order; with a borehole well, the wall's
+  // vertices all share one more row, the well's (mesh_vertex -1).
   const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
   const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
   std::vector<int32_t> vertices;
-  for (int32_t n : joint_nodes) vertices.push_back(node_vertex[size_t(n)]);
+  for (int32_t n : joint_nodes)
+    if (!well_is_wall() || !wall_.on_wall[size_t(node_vertex[size_t(n)])])
+      vertices.push_back(node_vertex[size_t(n)]);
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   row_of_mesh_vertex_.assign(vent_vertex.size(), -1);
   for (size_t r = 0; r < vertices.size(); ++r) row_of_mesh_vertex_[size_t(vertices[r])] = int32_t(r);
+  if (well_is_wall()) {
+    well_row_ = vertices.size();
+    for (size_t v = 0; v < wall_.on_wall.size(); ++v)
+      if (wall_.on_wall[v]) row_of_mesh_vertex_[v] = int32_t(well_row_);
+  }
   Table& rows = store_.add_table(vertex_table);
-  rows.add<int32_t>("mesh_vertex", 1).indexes(IndexTarget::list_of(vent_vertex.size()));
+  rows.add<int32_t>("mesh_vertex", 1)
+      .indexes(well_is_wall() ? IndexTarget::list_of(vent_vertex.size()).or_none()
+                              : IndexTarget::list_of(vent_vertex.size()));
   rows.add<double>("pressure", 1);
   rows.add<double>("mass", 1);
   rows.add<uint8_t>("role", 1);
   rows.add<double>("wetting_time", 1);
   rows.add<double>("exchanged", 1);
   rows.add<double>("volume", 1);
-  rows.resize(vertices.size());
+  rows.resize(vertices.size() + (well_is_wall() ? 1 : 0));
   std::copy(vertices.begin(), vertices.end(), rows.span<int32_t>("mesh_vertex").begin());
+  if (well_is_wall()) rows.span<int32_t>("mesh_vertex")[well_row_] = -1;
   auto pressure = rows.span<double>("pressure");
   std::fill(pressure.begin(), pressure.end(), spec_.lag_pressure);
   auto wetting = rows.span<double>("wetting_time");
   std::fill(wetting.begin(), wetting.end(), -1.0);
-  vent_row_.resize(vertices.size());
+  vent_row_.assign(rows.size(), 0);
   for (size_t r = 0; r < vertices.size(); ++r) vent_row_[r] = vent_vertex[size_t(vertices[r])];
   Table& books = store_.add_table(books_table);
   for (const char* c :
@@ -57,10 +69,30 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
   joined.resize(store_.table(solid::joint_table).size());
   auto order = joined.span<int64_t>("joined");
   std::fill(order.begin(), order.end(), -1);
-  local_of_row_.assign(vertices.size(), -1);
+  local_of_row_.assign(rows.size(), -1);
   entry_of_node_.assign(store_.table(solid::node_table).size(), -1);
+  add_well_wall();
   sync_network();
+  if (joints_.empty()) network_changed();  // a borehole well alone, before any crack
   initial_fill();
+}
+
+// The borehole's well is network vertex 0 from the start, and its wall nodes are the first entries, so
+// that the numbering is the same after a restart.
+void FractureFlowSystem::add_well_wall() {
+  if (!well_is_wall()) return;
+  local_of_row_[well_row_] = 0;
+  row_of_local_.push_back(int32_t(well_row_));
+  wall_entry_.clear();
+  for (int32_t node : wall_.face_nodes) {
+    if (entry_of_node_[size_t(node)] < 0) {
+      entry_of_node_[size_t(node)] = int32_t(node_.size());
+      node_.push_back(node);
+      node_vertex_.push_back(0);
+      felt_.push_back(0.0);
+    }
+    wall_entry_.push_back(entry_of_node_[size_t(node)]);
+  }
 }
 
 Access FractureFlowSystem::access() const {
@@ -69,6 +101,7 @@ Access FractureFlowSystem::access() const {
   std::vector<std::string> reads{col(N, "inv_mass"), col(N, "free"), col(solid::joint_table, "nodes"),
                                  col(solid::event_table, "joint")};
   if (spec_.wet_damage < 1.0) reads.push_back(col(solid::joint_table, "d_max"));
+  if (well_is_wall()) reads.push_back(col(N, "x0"));
   std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "crack_force"),
                                   col(solid::energy_table, "external_work")};
   for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})
@@ -186,17 +219,51 @@ void FractureFlowSystem::geometry() {
     }
   }
   for (size_t v = 0; v < weight_.size(); ++v)
-    for (int d = 0; d < 3; ++d) vertex_x_[3 * v + size_t(d)] /= weight_[v];
+    for (int d = 0; d < 3; ++d)
+      if (weight_[v] > 0.0) vertex_x_[3 * v + size_t(d)] /= weight_[v];
   std::fill(area_vector_.begin(), area_vector_.end(), 0.0);
   kernels::add_pressure_area_vectors(corner_entry_, normal_, area_, area_vector_);
   std::fill(open_area_vector_.begin(), open_area_vector_.end(), 0.0);
   kernels::add_open_area_vectors(corner_entry_, normal_, area_, opening_, spec_.aperture_floor,
                                  open_area_vector_);
+  if (well_is_wall()) wall_geometry(x);
+}
+
+// The borehole's wall: its pressure area vectors join its nodes' entries (always open: the hole does
+// not close), and the well's volume takes the hole's change from the reference positions, a . (x - x0)
+// summed over the wall's nodes (to first order in the displacement). The well sits at the injection point.
+void FractureFlowSystem::wall_geometry(std::span<const double> x) {
+  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  size_t wall_entries = 0;
+  for (int32_t e : wall_entry_) wall_entries = std::max(wall_entries, size_t(e) + 1);
+  wall_area_vector_.assign(3 * wall_entries, 0.0);
+  kernels::add_wall_area_vectors(wall_.face_nodes, wall_entry_, x, wall_area_vector_);
+  hole_change_ = 0.0;
+  for (size_t e = 0; e < wall_entries; ++e) {
+    const size_t n = size_t(node_[e]);
+    for (size_t d = 0; d < 3; ++d) {
+      area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];
+      open_area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];
+      hole_change_ += wall_area_vector_[3 * e + d] * (x[3 * n + d] - x0[3 * n + d]);
+    }
+  }
+  volume_[0] += hole_change_;
+  for (size_t d = 0; d < 3; ++d) vertex_x_[d] = spec_.point[d];
 }
 
 // At t = 0 the initial cracks hold fluid at the initial pressure, and the well is the crack vertex nearest
 // the injection point.
 void FractureFlowSystem::initial_fill() {
+  if (well_is_wall()) {
+    geometry();
+  } else {
+    locate_well();
+  }
+  fill_initial_cracks();
+}
+
+// The well is the crack vertex nearest the injection point, within an element of it.
+void FractureFlowSystem::locate_well() {
   if (row_of_local_.empty())
     throw Error(
         "fracture_flow: no crack to inject into at t = 0; add a starter crack "
@@ -230,6 +297,9 @@ void FractureFlowSystem::initial_fill() {
         spec_.point[0], spec_.point[1], spec_.point[2], std::sqrt(best_d2), vertex_x_[3 * best],
         vertex_x_[3 * best + 1], vertex_x_[3 * best + 2], reach));
   well_row_ = size_t(row_of_local_[best]);
+}
+
+void FractureFlowSystem::fill_initial_cracks() {
   Table& rows = store_.table(vertex_table);
   auto pressure = rows.span<double>("pressure");
   auto mass = rows.span<double>("mass");
@@ -268,6 +338,7 @@ void FractureFlowSystem::restored() {
   row_of_local_.clear();
   std::fill(local_of_row_.begin(), local_of_row_.end(), -1);
   std::fill(entry_of_node_.begin(), entry_of_node_.end(), -1);
+  add_well_wall();
   // The checkpoint's network, in the order it was built.
   const auto joined = store_.table(fracture_flow::joint_table).span<const int64_t>("joined");
   std::vector<std::pair<int64_t, size_t>> order;
@@ -496,8 +567,9 @@ FractureFlowSystem::Measures FractureFlowSystem::measure() const {
       m.front_extent = std::max(m.front_extent, std::sqrt(d2));
     }
   }
-  // The crack's own volume: without the well's storage.
+  // The crack's own volume: without the well's storage (and a borehole's expansion).
   m.crack_volume -= spec_.well_volume + spec_.well_compliance * (m.well_pressure - spec_.initial_pressure);
+  if (well_is_wall()) m.crack_volume -= hole_change_;
   for (double a : area_) m.crack_area += a;
   m.triangles = joints_.size();
   return m;
@@ -512,7 +584,19 @@ void FractureFlowSystem::network_geometry(std::vector<double>& points, std::vect
   for (size_t t = 0; t < area_.size(); ++t)
     for (size_t c = 0; c < 3; ++c)
       aperture[size_t(triangles_[3 * t + c])] += area_[t] / 3.0 * aperture_[3 * t + c];
-  for (size_t v = 0; v < aperture.size(); ++v) aperture[v] /= vertex_area_[v];
+  for (size_t v = 0; v < aperture.size(); ++v)
+    if (vertex_area_[v] > 0.0) aperture[v] /= vertex_area_[v];
+  if (!well_is_wall()) return;
+  // A borehole's well gathers every wall point into one vertex placed at the injection point: drawn there,
+  // the cracks would reach into the hole. Each crack corner on the wall is drawn where it is instead, with
+  // the well's row (its pressure) and its own aperture.
+  for (size_t k = 0; k < triangles.size(); ++k) {
+    if (triangles[k] != 0) continue;
+    triangles[k] = int32_t(rows.size());
+    rows.push_back(int32_t(well_row_));
+    aperture.push_back(aperture_[k]);
+    for (size_t d = 0; d < 3; ++d) points.push_back(tri_x_[3 * k + d]);
+  }
 }
 
 }  // namespace rift

@@ -19,12 +19,19 @@
 
 namespace rift {
 
+// A borehole's wall as the well (fracture_flow.injection.surfaces): one lumped network vertex that holds
+// the hole's fluid, loads the wall with its pressure and feeds every crack that reaches the wall.
+struct WellWall {
+  std::vector<int32_t> face_nodes;  // 3 per wall face: solid nodes, the face's normal out of the rock
+  std::vector<uint8_t> on_wall;     // 1 per mesh vertex: on the wall; empty: the well is a crack vertex
+};
+
 class FractureFlowSystem : public System {
  public:
   // mass_damping: the solid's (its factor enters the closure). Throws rift::Error (naming the scene key)
   // when the well's point is not at a crack vertex.
   FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
-                     std::vector<uint8_t> vent_vertex);
+                     std::vector<uint8_t> vent_vertex, WellWall wall = {});
   std::string name() const override { return "fracture_flow"; }
   Access access() const override;
   void run(const StepContext& ctx) override;
@@ -55,14 +62,23 @@ class FractureFlowSystem : public System {
   void join(size_t joint);
   void add_triangle(size_t joint);
   void network_changed();
+  void add_well_wall();
+  bool well_is_wall() const { return !wall_.on_wall.empty(); }
   void geometry();
   void initial_fill();
+  void locate_well();
+  void fill_initial_cracks();
+  void wall_geometry(std::span<const double> x);
 
   Store& store_;
   FractureFlowSpec spec_;
   kernels::FluidEos eos_;
   TimeFunction mass_damping_;
-  std::vector<uint8_t> vent_row_;  // 1 per vertex row: on a vent surface
+  WellWall wall_;
+  std::vector<uint8_t> vent_row_;         // 1 per vertex row: on a vent surface
+  std::vector<int32_t> wall_entry_;       // 3 per wall face: its corners' entries (the first entries)
+  std::vector<double> wall_area_vector_;  // 3 per wall entry, this step
+  double hole_change_ = 0.0;              // the hole's volume change from the reference positions [m^3]
   NetworkFlow flow_;
   std::vector<int32_t> row_of_mesh_vertex_;  // -1 where no joint touches the vertex
   size_t well_row_ = 0;

@@ -18,9 +18,11 @@ void NetworkFlow::set_network(std::span<const int32_t> triangles, size_t vertex_
   triangles_.assign(triangles.begin(), triangles.end());
   const size_t nt = triangles_.size() / 3;
   // Edges as sorted vertex pairs, numbered in sorted order (independent of the triangles' order).
+  // A triangle may have two corners on one vertex (a borehole well gathers every wall point into one):
+  // the edge between them joins a vertex to itself and carries nothing, so it is left out (key -1).
   std::vector<int64_t> keys(3 * nt);
   auto key = [&](int32_t a, int32_t b) {
-    return int64_t(std::min(a, b)) * int64_t(vertex_count) + std::max(a, b);
+    return a == b ? int64_t(-1) : int64_t(std::min(a, b)) * int64_t(vertex_count) + std::max(a, b);
   };
   for (size_t t = 0; t < nt; ++t)
     for (int c = 0; c < 3; ++c)
@@ -28,6 +30,7 @@ void NetworkFlow::set_network(std::span<const int32_t> triangles, size_t vertex_
   std::vector<int64_t> unique_keys = keys;
   std::sort(unique_keys.begin(), unique_keys.end());
   unique_keys.erase(std::unique(unique_keys.begin(), unique_keys.end()), unique_keys.end());
+  if (!unique_keys.empty() && unique_keys.front() < 0) unique_keys.erase(unique_keys.begin());
   edge_v_.resize(2 * unique_keys.size());
   for (size_t e = 0; e < unique_keys.size(); ++e) {
     edge_v_[2 * e] = int32_t(unique_keys[e] / int64_t(vertex_count));
@@ -35,8 +38,10 @@ void NetworkFlow::set_network(std::span<const int32_t> triangles, size_t vertex_
   }
   triangle_edge_.resize(3 * nt);
   for (size_t k = 0; k < keys.size(); ++k)
-    triangle_edge_[k] =
-        int32_t(std::lower_bound(unique_keys.begin(), unique_keys.end(), keys[k]) - unique_keys.begin());
+    triangle_edge_[k] = keys[k] < 0
+                            ? -1
+                            : int32_t(std::lower_bound(unique_keys.begin(), unique_keys.end(), keys[k]) -
+                                      unique_keys.begin());
   transmissibility_.assign(unique_keys.size(), 0.0);
   edge_density_.assign(unique_keys.size(), 0.0);
   new_pressure_.assign(vertex_count, 0.0);
@@ -80,7 +85,8 @@ void NetworkFlow::transmissibilities(const NetworkFlowStepInput& in) {
                                   k);
     const double w = (in.aperture[3 * t] + in.aperture[3 * t + 1] + in.aperture[3 * t + 2]) / 3.0;
     const double c = w * w * w / (12.0 * viscosity_);
-    for (int i = 0; i < 3; ++i) transmissibility_[size_t(triangle_edge_[3 * t + i])] -= c * k[i];
+    for (int i = 0; i < 3; ++i)
+      if (triangle_edge_[3 * t + i] >= 0) transmissibility_[size_t(triangle_edge_[3 * t + i])] -= c * k[i];
   }
   negative_ = size_t(
       std::count_if(transmissibility_.begin(), transmissibility_.end(), [](double T) { return T < 0.0; }));
@@ -321,9 +327,11 @@ std::string NetworkFlow::zero_viscosity_step(const NetworkFlowStepInput& in, Net
     s.mass[v] = fill[r] * eos_.density(p) * volume_at(in, v, p);
     s.pressure[v] = p;
     if (fixed_vertex[r] >= 0) mass[r] -= s.mass[v];
-    if (FlowRole(s.role[v]) == FlowRole::dry) s.wetting_time[v] = in.time;
+    // A part with no fluid at all (a crack that opened apart from the others) stays dry.
+    const bool reached = s.mass[v] > 0.0;
+    if (FlowRole(s.role[v]) == FlowRole::dry && reached) s.wetting_time[v] = in.time;
     if (FlowRole(s.role[v]) != FlowRole::fixed)
-      s.role[v] = uint8_t(fill[r] < 1.0 ? FlowRole::filling : FlowRole::wet);
+      s.role[v] = uint8_t(fill[r] >= 1.0 ? FlowRole::wet : reached ? FlowRole::filling : FlowRole::dry);
   }
   for (size_t r = 0; r < vertices_; ++r)
     if (fixed_vertex[r] >= 0 && size_t(find(int32_t(r))) == r)

@@ -78,8 +78,9 @@ class NetworkFlow {
   NetworkFlow(kernels::FluidEos eos, double viscosity, double lag_pressure,
               NetworkSolver solver = NetworkSolver::automatic);
 
-  // The network: triangles on vertex ids [0, vertex_count). Builds the edges and the matrix pattern; call
-  // again whenever triangles are added.
+  // The network: triangles on vertex ids [0, vertex_count), two corners of a triangle possibly on one
+  // vertex (a lumped well). Builds the edges and the matrix pattern; call again whenever triangles are
+  // added.
   void set_network(std::span<const int32_t> triangles, size_t vertex_count);
 
   // A step in which no fluid moves between vertices: each keeps its mass (plus what the caller added) and
@@ -113,7 +114,7 @@ class NetworkFlow {
   size_t vertices_ = 0;
   std::vector<int32_t> triangles_;
   std::vector<int32_t> edge_v_;         // 2 per edge, i < j, sorted
-  std::vector<int32_t> triangle_edge_;  // 3 per triangle: the edge opposite each corner
+  std::vector<int32_t> triangle_edge_;  // 3 per triangle: the edge opposite each corner (-1: none)
   std::vector<double> transmissibility_, edge_density_;
   std::vector<double> new_pressure_;
   std::vector<int32_t> component_;

@@ -156,6 +156,49 @@ TEST(NetworkFlow, SlotCarriesTheCubicLawFlux) {
     }
 }
 
+// A borehole's well gathers every crack point on its wall into one vertex, so triangles at the wall have
+// two corners on it. With the slot's inlet edge gathered into one well vertex held at p1, the flux is the
+// cubic law's all the same (the gathered points have one pressure in the exact solution too): 1e-10 as
+// above.
+TEST(NetworkFlow, AWellGatheringTheInletEdgeCarriesTheCubicLawFlux) {
+  const double L = 0.1, W = 0.02, w = 1e-4, mu = 1e-3, p1 = 2e6, p2 = 5e5;
+  const kernels::FluidEos stiff{1000.0, 0.0, 1e20};
+  const Strip s = make_strip(L, W, 12, 5, 0.3, 11);
+  const RigidNetwork geometry(s.vx, s.tri, w);  // corner positions and apertures of the real triangles
+  // Vertex 0 is the well; the others keep their order.
+  std::vector<int32_t> id(s.vx.size() / 3, -1);
+  int32_t next = 1;
+  for (size_t v = 0; v < id.size(); ++v) id[v] = s.vx[3 * v] == 0.0 ? 0 : next++;
+  std::vector<int32_t> merged;
+  for (int32_t v : s.tri) merged.push_back(id[size_t(v)]);
+  const size_t nv = size_t(next);
+  RigidNetwork net = geometry;
+  net.volume.assign(nv, 0.0);
+  for (size_t v = 0; v < id.size(); ++v) net.volume[size_t(id[v])] += geometry.volume[v];
+  for (auto* a : {&net.compliance, &net.applied, &net.source, &net.fixed}) a->assign(nv, 0.0);
+  VertexState st(nv);
+  for (size_t v = 0; v < id.size(); ++v) {
+    const size_t m = size_t(id[v]);
+    const bool outlet = std::abs(s.vx[3 * v] - L) < 1e-12 * L;
+    st.role[m] = uint8_t(m == 0 || outlet ? FlowRole::fixed : FlowRole::wet);
+    net.fixed[m] = m == 0 ? p1 : p2;
+    st.pressure[m] = m == 0 ? p1 : p2;
+  }
+  for (size_t m = 0; m < nv; ++m) st.mass[m] = stiff.density(st.pressure[m]) * net.volume[m];
+  NetworkFlow flow(stiff, mu, 0.0);
+  flow.set_network(merged, nv);
+  NetworkFlowBooks books;
+  for (int k = 0; k < 3; ++k) {
+    std::fill(st.exchanged.begin(), st.exchanged.end(), 0.0);
+    auto view = st.view();
+    ASSERT_EQ(flow.step(net.input(1.0, k + 1.0), view, books), "");
+  }
+  const double q = w * w * w * (p1 - p2) * W / (12.0 * mu * L);
+  EXPECT_NEAR(st.exchanged[0] / stiff.density0, q, 1e-10 * q);
+  for (size_t v = 0; v < id.size(); ++v)
+    EXPECT_NEAR(st.pressure[size_t(id[v])], p1 + (p2 - p1) * s.vx[3 * v] / L, 1e-9 * p1);
+}
+
 // Zero viscosity: a sealed crack (no fixed vertex) holds one pressure, the equation of state's for its
 // total mass in its total volume, whatever the masses' distribution; a second, separate crack keeps its own.
 TEST(NetworkFlow, ZeroViscosityGivesOnePressurePerConnectedCrack) {

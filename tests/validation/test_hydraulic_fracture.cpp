@@ -23,30 +23,20 @@
 #include "systems/solid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
+#include "tests/validation/fracture_flow_support.hpp"
 #include "tests/validation/validation_support.hpp"
 
 namespace rift {
 namespace {
 
+using validation::flow_of;
+using validation::metric;
 using validation::run_watching;
 using validation::validation_scene;
 
 constexpr double kE = 1.0e10, kNu = 0.25, kA = 1.0, kGI = 93.75;  // the KGD scenes' rock
 const double kEp = kE / (1.0 - kNu * kNu);
 constexpr double kInjected = 3.68156e-5 * 16.0;  // m^3 per metre of crack: the half model's x 2 / 0.125 m
-
-FractureFlowModel& flow_of(Simulation& sim) {
-  for (auto& m : sim.world().models)
-    if (auto* f = dynamic_cast<FractureFlowModel*>(m.get())) return *f;
-  throw std::runtime_error("the scene has no fracture_flow");
-}
-
-double metric(const std::vector<std::pair<std::string, double>>& row, const std::string& name) {
-  for (const auto& [n, v] : row)
-    if (n == name) return v;
-  ADD_FAILURE() << "no metric " << name;
-  return 0.0;
-}
 
 struct InjectionResult {
   double pressure = 0, centre_aperture = 0, worst_mass_error = 0, pump = 0, work = 0, dissipation = 0,

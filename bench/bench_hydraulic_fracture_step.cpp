@@ -9,8 +9,10 @@
 #include <benchmark/benchmark.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/bench_common.hpp"
@@ -42,24 +44,26 @@ std::unique_ptr<rift::Simulation> start(int threads, int flow) {
   return sim;
 }
 
+// The systems' time so far, and the fracture flow's part of it (output and checkpoints left out).
+std::pair<double, double> system_seconds(rift::Simulation& sim) {
+  double all = 0.0, fracture_flow = 0.0;
+  for (const auto& t : sim.graph().timings()) {
+    if (t.name == "output" || t.name == "checkpoint") continue;
+    all += t.seconds;
+    if (t.name == "fracture_flow") fracture_flow += t.seconds;
+  }
+  return {all, fracture_flow};
+}
+
 void BM_HydraulicFractureStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const int flow = static_cast<int>(state.range(1));
   const auto sim = start(threads, flow);
   const rift::Store& store = sim->world().store;
   const size_t tets = store.table("solid_tet").size();
-  auto seconds = [&] {
-    double all = 0.0, fracture_flow = 0.0;
-    for (const auto& t : sim->graph().timings()) {
-      if (t.name == "output" || t.name == "checkpoint") continue;
-      all += t.seconds;
-      if (t.name == "fracture_flow") fracture_flow += t.seconds;
-    }
-    return std::pair{all, fracture_flow};
-  };
-  const auto before = seconds();
+  const auto before = system_seconds(*sim);
   for (auto _ : state) sim->step_once();
-  const auto after = seconds();
+  const auto after = system_seconds(*sim);
   state.counters["tets"] = static_cast<double>(tets);
   state.counters["threads"] = threads;
   if (flow > 0) {
@@ -70,7 +74,52 @@ void BM_HydraulicFractureStep(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(tets));
 }
 
+// The budget at its figure: scenes/bench/network_slab.yaml, 124,416 tets and a crack of 10,368
+// triangles over the slab's mid-plane, water (a conjugate-gradient solve every step). Arguments: threads;
+// flow = 0 (dry) or 1. Counters as above, and the network's triangles. Tiny: 24 x 24 x 4 cells.
+std::unique_ptr<rift::Simulation> start_slab(int threads, int flow) {
+  std::vector<std::string> overrides;
+  if (rift::bench::tiny()) overrides.push_back("mesh.generate.cells=[24, 24, 4]");
+  rift::Scene scene =
+      rift::load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/bench/network_slab.yaml", overrides);
+  if (flow == 0) scene.fracture_flow.reset();
+  rift::RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  o.threads = threads;
+  spdlog::set_level(spdlog::level::warn);
+  auto sim = std::make_unique<rift::Simulation>(std::move(scene), o);
+  for (int64_t s = 0; s < (rift::bench::tiny() ? 2 : 20); ++s) sim->step_once();
+  return sim;
+}
+
+void BM_LargeNetworkStep(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  const int flow = static_cast<int>(state.range(1));
+  const auto sim = start_slab(threads, flow);
+  const rift::Store& store = sim->world().store;
+  const size_t tets = store.table("solid_tet").size();
+  const auto before = system_seconds(*sim);
+  for (auto _ : state) sim->step_once();
+  const auto after = system_seconds(*sim);
+  state.counters["tets"] = static_cast<double>(tets);
+  state.counters["threads"] = threads;
+  if (flow > 0) {
+    const auto joined = store.table(rift::fracture_flow::joint_table).span<const int64_t>("joined");
+    state.counters["network_triangles"] =
+        static_cast<double>(std::count_if(joined.begin(), joined.end(), [](int64_t k) { return k >= 0; }));
+    state.counters["flow_share"] = (after.second - before.second) / (after.first - before.first);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(tets));
+}
+
 }  // namespace
+
+BENCHMARK(BM_LargeNetworkStep)
+    ->ArgsProduct({{1, 2}, {0, 1}})
+    ->ArgNames({"threads", "flow"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK(BM_HydraulicFractureStep)
     ->ArgsProduct({{1, 2}, {0, 1, 2}})

@@ -60,8 +60,14 @@ void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double da
 double apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,
                      std::span<const double> felt, std::span<const double> now, std::span<double> x,
                      std::span<double> v) {
+  return apply_closure_block(nodes, dt, damping_factor, felt, now, x, v, 0, nodes.node.size());
+}
+
+double apply_closure_block(const CrackClosureNodes& nodes, double dt, double damping_factor,
+                           std::span<const double> felt, std::span<const double> now, std::span<double> x,
+                           std::span<double> v, size_t begin, size_t end) {
   double work = 0.0;
-  for (size_t i = 0; i < nodes.node.size(); ++i) {
+  for (size_t i = begin; i < end; ++i) {
     const size_t n = size_t(nodes.node[i]);
     const double dp = now[i] - felt[i];
     const double dv = dt * damping_factor * dp * nodes.inv_mass[n];

@@ -65,5 +65,9 @@ void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double da
 double apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,
                      std::span<const double> felt, std::span<const double> now, std::span<double> x,
                      std::span<double> v);
+// The same for the entries [begin, end) only (each entry moves its own node: blocks run in parallel).
+double apply_closure_block(const CrackClosureNodes& nodes, double dt, double damping_factor,
+                           std::span<const double> felt, std::span<const double> now, std::span<double> x,
+                           std::span<double> v, size_t begin, size_t end);
 
 }  // namespace rift::kernels

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "engine/core/error.hpp"
+#include "engine/schedule/parallel.hpp"
 #include "kernels/crack_pressure_closure.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
 #include "systems/solid_tables.hpp"
@@ -13,6 +14,12 @@
 namespace rift {
 
 using fracture_flow::books_table;
+
+namespace {
+// Blocks of the parallel loops: fixed sizes, so every sum is the same on any thread count.
+constexpr size_t kTriangleGrain = 1024, kEntryGrain = 2048;
+}  // namespace
+
 using fracture_flow::vertex_table;
 
 FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
@@ -197,27 +204,31 @@ void FractureFlowSystem::geometry() {
   std::fill(vertex_area_.begin(), vertex_area_.end(), 0.0);
   std::fill(vertex_x_.begin(), vertex_x_.end(), 0.0);
   std::fill(weight_.begin(), weight_.end(), 0.0);
-  for (size_t t = 0; t < joints_.size(); ++t) {
-    const double* corner[6];
-    for (int c = 0; c < 6; ++c) corner[c] = &x[3 * size_t(joint_nodes[6 * size_t(joints_[t]) + size_t(c)])];
-    const kernels::CrackTriangle tri = kernels::crack_triangle(corner);
-    area_[t] = tri.area;
-    for (int d = 0; d < 3; ++d) normal_[3 * t + size_t(d)] = tri.normal[d];
-    for (int c = 0; c < 3; ++c) {
-      const size_t v = size_t(triangles_[3 * t + size_t(c)]);
-      opening_[3 * t + size_t(c)] = tri.opening[c];
-      floor_volume_[v] += tri.area * spec_.aperture_floor / 3.0;
-      const double w = std::max(tri.opening[c], spec_.aperture_floor);
-      aperture_[3 * t + size_t(c)] = w;
-      volume_[v] += tri.area * w / 3.0;
-      vertex_area_[v] += tri.area / 3.0;
-      weight_[v] += 1.0;
-      for (int d = 0; d < 3; ++d) {
-        tri_x_[9 * t + 3 * size_t(c) + size_t(d)] = tri.mid[c][d];
-        vertex_x_[3 * v + size_t(d)] += tri.mid[c][d];
+  // Each triangle from its own joint's nodes (blocks in parallel), then its corners' shares added to the
+  // vertices in triangle order (serial: the sums' order does not depend on the threads).
+  parallel_for(joints_.size(), kTriangleGrain, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const double* corner[6];
+      for (size_t c = 0; c < 6; ++c) corner[c] = &x[3 * size_t(joint_nodes[6 * size_t(joints_[t]) + c])];
+      const kernels::CrackTriangle tri = kernels::crack_triangle(corner);
+      area_[t] = tri.area;
+      for (size_t d = 0; d < 3; ++d) normal_[3 * t + d] = tri.normal[d];
+      for (size_t c = 0; c < 3; ++c) {
+        opening_[3 * t + c] = tri.opening[c];
+        aperture_[3 * t + c] = std::max(tri.opening[c], spec_.aperture_floor);
+        for (size_t d = 0; d < 3; ++d) tri_x_[9 * t + 3 * c + d] = tri.mid[c][d];
       }
     }
-  }
+  });
+  for (size_t t = 0; t < joints_.size(); ++t)
+    for (size_t c = 0; c < 3; ++c) {
+      const size_t v = size_t(triangles_[3 * t + c]);
+      floor_volume_[v] += area_[t] * spec_.aperture_floor / 3.0;
+      volume_[v] += area_[t] * aperture_[3 * t + c] / 3.0;
+      vertex_area_[v] += area_[t] / 3.0;
+      weight_[v] += 1.0;
+      for (size_t d = 0; d < 3; ++d) vertex_x_[3 * v + d] += tri_x_[9 * t + 3 * c + d];
+    }
   for (size_t v = 0; v < weight_.size(); ++v)
     for (int d = 0; d < 3; ++d)
       if (weight_[v] > 0.0) vertex_x_[3 * v + size_t(d)] /= weight_[v];
@@ -249,6 +260,25 @@ void FractureFlowSystem::wall_geometry(std::span<const double> x) {
   }
   volume_[0] += hole_change_;
   for (size_t d = 0; d < 3; ++d) vertex_x_[d] = spec_.point[d];
+}
+
+// C per vertex, with all its corners and with the open ones only (kernels/crack_pressure_closure.hpp): each
+// entry's weights in parallel blocks, then added to the vertices in entry order.
+void FractureFlowSystem::closure_compliance(const kernels::CrackClosureNodes& closure,
+                                            const kernels::CrackClosureNodes& open_closure, double scale) {
+  entry_weight_.resize(2 * node_.size());
+  parallel_for(node_.size(), kEntryGrain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      entry_weight_[2 * i] = kernels::closure_weight(closure, i);
+      entry_weight_[2 * i + 1] = kernels::closure_weight(open_closure, i);
+    }
+  });
+  std::fill(compliance_.begin(), compliance_.end(), 0.0);
+  std::fill(compliance_open_.begin(), compliance_open_.end(), 0.0);
+  for (size_t i = 0; i < node_.size(); ++i) {
+    compliance_[size_t(node_vertex_[i])] += scale * entry_weight_[2 * i];
+    compliance_open_[size_t(node_vertex_[i])] += scale * entry_weight_[2 * i + 1];
+  }
 }
 
 // At t = 0 the initial cracks hold fluid at the initial pressure, and the well is the crack vertex nearest
@@ -403,12 +433,9 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   const auto free = nodes.span<const uint8_t>("free");
   const double damping_factor = 1.0 / (1.0 + 0.5 * mass_damping_(ctx.time) * ctx.dt);
   const kernels::CrackClosureNodes closure{node_, node_vertex_, area_vector_, inv_mass, free};
-  std::fill(compliance_.begin(), compliance_.end(), 0.0);
-  kernels::add_closure_compliance(closure, ctx.dt, damping_factor, compliance_);
   kernels::CrackClosureNodes open_closure = closure;
   open_closure.open_area_vector = open_area_vector_;
-  std::fill(compliance_open_.begin(), compliance_open_.end(), 0.0);
-  kernels::add_closure_compliance(open_closure, ctx.dt, damping_factor, compliance_open_);
+  closure_compliance(closure, open_closure, ctx.dt * ctx.dt * damping_factor);
   std::fill(applied_.begin(), applied_.end(), 0.0);
   for (size_t i = 0; i < node_.size(); ++i) {
     const size_t n = size_t(node_[i]);
@@ -471,9 +498,11 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   // The corners move for the pressure change and carry the new pressure into the next node pass.
   for (size_t i = 0; i < node_.size(); ++i) now_[i] = pressure_[size_t(node_vertex_[i])];
   Table& solid_nodes = store_.table(solid::node_table);
+  const auto x = solid_nodes.span<double>("x"), v = solid_nodes.span<double>("v");
   const double correction_work =
-      kernels::apply_closure(closure, ctx.dt, damping_factor, felt_, now_, solid_nodes.span<double>("x"),
-                             solid_nodes.span<double>("v"));
+      parallel_sum(node_.size(), kEntryGrain, work_blocks_, [&](size_t b, size_t e) {
+        return kernels::apply_closure_block(closure, ctx.dt, damping_factor, felt_, now_, x, v, b, e);
+      });
   store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
   auto force = solid_nodes.span<double>("crack_force");
   for (size_t i = 0; i < node_.size(); ++i) {

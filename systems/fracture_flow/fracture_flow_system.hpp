@@ -7,13 +7,15 @@
 //      of its own volume), with the well's source or pressure and the vents;
 //   4. the closure moves the wet corner nodes for the pressure change, and writes each such node's force
 //      p a into solid_node.crack_force, which the next step's node pass gathers as an external force.
-// Serial: its cost is the network's, not the mesh's, and its sums do not depend on the thread count.
+// The per-triangle geometry and the per-entry closure run in fixed blocks in parallel; every sum over
+// vertices or blocks is serial, in a fixed order, so the step does not depend on the thread count.
 #include <cstdint>
 #include <vector>
 
 #include "engine/core/table.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/schedule/system.hpp"
+#include "kernels/crack_pressure_closure.hpp"
 #include "kernels/fracture_flow.hpp"
 #include "systems/fracture_flow/network_flow.hpp"
 
@@ -69,6 +71,8 @@ class FractureFlowSystem : public System {
   void locate_well();
   void fill_initial_cracks();
   void wall_geometry(std::span<const double> x);
+  void closure_compliance(const kernels::CrackClosureNodes& closure,
+                          const kernels::CrackClosureNodes& open_closure, double scale);
 
   Store& store_;
   FractureFlowSpec spec_;
@@ -98,6 +102,7 @@ class FractureFlowSystem : public System {
   std::vector<double> area_vector_, open_area_vector_, opening_, now_, joining_;
   std::vector<double> floor_volume_, compliance_open_, previous_pressure_;
   std::vector<double> vertex_area_, vertex_x_, weight_;  // per local vertex: area share, position
+  std::vector<double> entry_weight_, work_blocks_;       // per entry: closure weights; per block: work
   std::vector<double> pressure_, mass_, wetting_, exchanged_;
   std::vector<uint8_t> role_;
   std::string problem_;

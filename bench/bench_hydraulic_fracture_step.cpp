@@ -24,6 +24,22 @@ namespace {
 
 constexpr int64_t kWarmUpSteps = 400;
 
+// The scene (scenes/<path>) with its overrides, without its fracture_flow when `dry`, after `warm_up` steps.
+std::unique_ptr<rift::Simulation> start_scene(const std::string& path,
+                                              const std::vector<std::string>& overrides, bool dry,
+                                              int threads, int64_t warm_up) {
+  rift::Scene scene = rift::load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/" + path, overrides);
+  if (dry) scene.fracture_flow.reset();
+  rift::RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  o.threads = threads;
+  spdlog::set_level(spdlog::level::warn);
+  auto sim = std::make_unique<rift::Simulation>(std::move(scene), o);
+  for (int64_t s = 0; s < warm_up; ++s) sim->step_once();
+  return sim;
+}
+
 std::unique_ptr<rift::Simulation> start(int threads, int flow) {
   std::vector<std::string> overrides;
   if (flow == 2) overrides.push_back("fracture_flow.viscosity=1.0e-3");
@@ -31,17 +47,8 @@ std::unique_ptr<rift::Simulation> start(int threads, int flow) {
     for (const char* o : {"mesh.generate.graded.size=0.25", "solid.fracture.box_min=[-1, -1, -0.2]",
                           "solid.fracture.box_max=[3, 3, 0.2]"})
       overrides.push_back(o);
-  rift::Scene scene =
-      rift::load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/radial_toughness.yaml", overrides);
-  if (flow == 0) scene.fracture_flow.reset();
-  rift::RunOptions o;
-  o.write_output = false;
-  o.progress = false;
-  o.threads = threads;
-  spdlog::set_level(spdlog::level::warn);
-  auto sim = std::make_unique<rift::Simulation>(std::move(scene), o);
-  for (int64_t s = 0; s < (rift::bench::tiny() ? 4 : kWarmUpSteps); ++s) sim->step_once();
-  return sim;
+  return start_scene("validation/radial_toughness.yaml", overrides, flow == 0, threads,
+                     rift::bench::tiny() ? 4 : kWarmUpSteps);
 }
 
 // The systems' time so far, and the fracture flow's part of it (output and checkpoints left out).
@@ -80,17 +87,7 @@ void BM_HydraulicFractureStep(benchmark::State& state) {
 std::unique_ptr<rift::Simulation> start_slab(int threads, int flow) {
   std::vector<std::string> overrides;
   if (rift::bench::tiny()) overrides.push_back("mesh.generate.cells=[24, 24, 4]");
-  rift::Scene scene =
-      rift::load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/bench/network_slab.yaml", overrides);
-  if (flow == 0) scene.fracture_flow.reset();
-  rift::RunOptions o;
-  o.write_output = false;
-  o.progress = false;
-  o.threads = threads;
-  spdlog::set_level(spdlog::level::warn);
-  auto sim = std::make_unique<rift::Simulation>(std::move(scene), o);
-  for (int64_t s = 0; s < (rift::bench::tiny() ? 2 : 20); ++s) sim->step_once();
-  return sim;
+  return start_scene("bench/network_slab.yaml", overrides, flow == 0, threads, rift::bench::tiny() ? 2 : 20);
 }
 
 void BM_LargeNetworkStep(benchmark::State& state) {

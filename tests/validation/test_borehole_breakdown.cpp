@@ -121,18 +121,7 @@ TEST(HydraulicFracture, ABoreholeRunIsDeterministicAndRestartsBitForBit) {
       "borehole_breakdown.yaml", {"mesh.generate.borehole.size=0.004", "mesh.generate.box=[0.5, 1.0, 0.004]",
                                   "fracture_flow.injection.point=[0, 0, 0.002]", "time.end=0.0016",
                                   "checkpoint.every_steps=2000", "output.interval=0.0004"});
-  std::string reference;
-  for (int threads : {1, 2, 4}) {
-    test::TempDir dir;
-    const RunResult r = test::run_scene(scene, dir.path(), threads);
-    ASSERT_TRUE(r.completed) << threads;
-    if (threads == 1) reference = hex64(r.state_hash);
-    EXPECT_EQ(hex64(r.state_hash), reference) << threads << " threads";
-  }
-  test::TempDir dir;
-  const auto resumed = test::stop_and_resume(scene, dir.path(), 2, 7000);
-  ASSERT_TRUE(resumed.rest.completed);
-  EXPECT_EQ(hex64(resumed.rest.state_hash), reference);
+  validation::expect_same_bits_on_threads_and_restart(scene, 7000);
 }
 
 }  // namespace

@@ -366,18 +366,7 @@ TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {
       "sneddon_injection.yaml", {"mesh.generate.graded.size=0.25", "solid.fracture.box_min=[-1, -0.225, -1]",
                                  "solid.fracture.box_max=[1.25, 0.225, 1]", "fracture_flow.viscosity=1e-3",
                                  "time.end=0.004", "checkpoint.every_steps=200", "output.interval=0.001"});
-  std::string reference;
-  for (int threads : {1, 2, 4}) {
-    test::TempDir dir;
-    const RunResult r = test::run_scene(scene, dir.path(), threads);
-    ASSERT_TRUE(r.completed) << threads;
-    if (threads == 1) reference = hex64(r.state_hash);
-    EXPECT_EQ(hex64(r.state_hash), reference) << threads << " threads";
-  }
-  test::TempDir dir;
-  const auto resumed = test::stop_and_resume(scene, dir.path(), 2, 400);
-  ASSERT_TRUE(resumed.rest.completed);
-  EXPECT_EQ(hex64(resumed.rest.state_hash), reference);
+  validation::expect_same_bits_on_threads_and_restart(scene, 400);
 }
 
 // Radial (penny) fracture in the toughness regime (scenes/validation/radial_toughness.yaml: zero

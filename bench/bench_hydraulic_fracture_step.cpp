@@ -62,23 +62,29 @@ std::pair<double, double> system_seconds(rift::Simulation& sim) {
   return {all, fracture_flow};
 }
 
-void BM_HydraulicFractureStep(benchmark::State& state) {
-  const int threads = static_cast<int>(state.range(0));
-  const int flow = static_cast<int>(state.range(1));
-  const auto sim = start(threads, flow);
-  const rift::Store& store = sim->world().store;
+// Times the steps; counters: tets, threads and, coupled, the network's triangles and the fracture flow's
+// share of the systems' time.
+void time_steps(benchmark::State& state, rift::Simulation& sim, int threads, bool coupled) {
+  const rift::Store& store = sim.world().store;
   const size_t tets = store.table("solid_tet").size();
-  const auto before = system_seconds(*sim);
-  for (auto _ : state) sim->step_once();
-  const auto after = system_seconds(*sim);
+  const auto before = system_seconds(sim);
+  for (auto _ : state) sim.step_once();
+  const auto after = system_seconds(sim);
   state.counters["tets"] = static_cast<double>(tets);
   state.counters["threads"] = threads;
-  if (flow > 0) {
-    state.counters["network_vertices"] =
-        static_cast<double>(store.table(rift::fracture_flow::vertex_table).size());
+  if (coupled) {
+    const auto joined = store.table(rift::fracture_flow::joint_table).span<const int64_t>("joined");
+    state.counters["network_triangles"] =
+        static_cast<double>(std::count_if(joined.begin(), joined.end(), [](int64_t k) { return k >= 0; }));
     state.counters["flow_share"] = (after.second - before.second) / (after.first - before.first);
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(tets));
+}
+
+void BM_HydraulicFractureStep(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  const int flow = static_cast<int>(state.range(1));
+  time_steps(state, *start(threads, flow), threads, flow > 0);
 }
 
 // The budget at its figure: scenes/bench/network_slab.yaml, 124,416 tets and a crack of 10,368
@@ -93,21 +99,7 @@ std::unique_ptr<rift::Simulation> start_slab(int threads, int flow) {
 void BM_LargeNetworkStep(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const int flow = static_cast<int>(state.range(1));
-  const auto sim = start_slab(threads, flow);
-  const rift::Store& store = sim->world().store;
-  const size_t tets = store.table("solid_tet").size();
-  const auto before = system_seconds(*sim);
-  for (auto _ : state) sim->step_once();
-  const auto after = system_seconds(*sim);
-  state.counters["tets"] = static_cast<double>(tets);
-  state.counters["threads"] = threads;
-  if (flow > 0) {
-    const auto joined = store.table(rift::fracture_flow::joint_table).span<const int64_t>("joined");
-    state.counters["network_triangles"] =
-        static_cast<double>(std::count_if(joined.begin(), joined.end(), [](int64_t k) { return k >= 0; }));
-    state.counters["flow_share"] = (after.second - before.second) / (after.first - before.first);
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(tets));
+  time_steps(state, *start_slab(threads, flow), threads, flow > 0);
 }
 
 }  // namespace

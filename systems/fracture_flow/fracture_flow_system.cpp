@@ -259,7 +259,6 @@ void FractureFlowSystem::wall_geometry(std::span<const double> x) {
     }
   }
   volume_[0] += hole_change_;
-  floor_volume_[0] += hole_change_;  // the hole does not close like a crack: only the crack part is floored
   for (size_t d = 0; d < 3; ++d) vertex_x_[d] = spec_.point[d];
 }
 

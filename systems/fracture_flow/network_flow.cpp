@@ -173,36 +173,15 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
   return "";
 }
 
-// One stage down for a vertex whose volume at p would fall below its floor: full compliance to its open
-// corners' only, then to none. Returns whether it moved.
-bool NetworkFlow::closing(const NetworkFlowStepInput& in, size_t v, double p) {
-  if (in.floor_volume.empty() || compliance_[v] == 0.0 || volume_at(in, v, p) >= in.floor_volume[v])
-    return false;
-  compliance_[v] = compliance_[v] != in.compliance_open[v] ? in.compliance_open[v] : 0.0;
-  return true;
-}
-
-// A fixed vertex refills to its pressure: its volume there must not close past its floor either.
-void NetworkFlow::close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
-  for (size_t v = 0; v < vertices_; ++v)
-    if (FlowRole(s.role[v]) == FlowRole::fixed)
-      while (closing(in, v, in.fixed_pressure[v])) {
-      }
-}
-
 std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& books) {
   compliance_.assign(in.compliance.begin(), in.compliance.end());
   if (viscosity_ <= 0.0) return zero_viscosity_step(in, s, books);
-  close_fixed(in, s);
   transmissibilities(in);
   // A wet vertex whose pressure would fall below the lag pressure cavitates: it holds the lag pressure
   // and the step is solved again, so that no fluid is drawn from a vertex that cannot give it. A wet
   // vertex whose volume would fall below its floor volume is closing and takes its open corners'
-  // compliance (NetworkFlowStepInput::floor_volume); if it would still fall below, its walls close no
-  // further within the step (no compliance: its linearised volume, and with it its mass, would otherwise
-  // go below zero when the walls are far more compliant than the fluid). Each pass only moves vertices one
-  // way (wet to filling; full compliance to open to none), so it ends within three times the vertex
-  // count; in practice in 1-3 passes.
+  // compliance (NetworkFlowStepInput::floor_volume). Each pass only moves vertices one way (wet to filling,
+  // full compliance to open), so it ends within twice the vertex count; in practice in 1-3 passes.
   for (size_t pass = 0;; ++pass) {
     if (std::string problem = solve_pressures(in, s); !problem.empty()) return problem;
     size_t changed = 0;
@@ -211,12 +190,14 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
       if (new_pressure_[v] < lag_pressure_) {
         s.role[v] = uint8_t(FlowRole::filling);
         ++changed;
-      } else if (closing(in, v, new_pressure_[v])) {
+      } else if (!in.floor_volume.empty() && compliance_[v] != in.compliance_open[v] &&
+                 volume_at(in, v, new_pressure_[v]) < in.floor_volume[v]) {
+        compliance_[v] = in.compliance_open[v];
         ++changed;
       }
     }
     if (changed == 0) break;
-    if (pass > 3 * vertices_) return "the fracture flow's cavitation passes did not settle";
+    if (pass > 2 * vertices_) return "the fracture flow's cavitation passes did not settle";
   }
   // Mass over the step along each edge, from i to j; fluid leaves only a wet or a fixed vertex.
   auto mobile = [&](size_t v) {
@@ -241,7 +222,6 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
 
 std::string NetworkFlow::local_step(const NetworkFlowStepInput& in, NetworkFlowState& s) {
   compliance_.assign(in.compliance.begin(), in.compliance.end());
-  close_fixed(in, s);
   return update_roles(in, s, false);
 }
 

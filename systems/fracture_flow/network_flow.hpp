@@ -108,8 +108,6 @@ class NetworkFlow {
   // below the lag pressure cavitates back to filling.
   // from_solve: wet vertices keep the solve's pressure (else they take the pressure of their mass).
   std::string update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s, bool from_solve);
-  bool closing(const NetworkFlowStepInput& in, size_t v, double p);
-  void close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s);
 
   kernels::FluidEos eos_;
   double viscosity_, lag_pressure_;

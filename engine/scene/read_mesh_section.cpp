@@ -197,6 +197,15 @@ std::optional<std::array<int, 3>> read_cells(MapReader& g) {
   return cells;
 }
 
+// A section this shape could have but the scene does not give: its key and its keys' documented paths
+// are known (the reader runs silenced), so that they count as declared.
+template <class Read>
+void declare_section(MapReader& g, const char* key, const Read& read) {
+  g.declare(key);
+  MapReader unused = MapReader::silenced(g.context(), g.key_path(key), g.doc_key_path(key), g.where());
+  read(unused);
+}
+
 MeshGenerateSpec read_generate(MapReader& g) {
   MeshGenerateSpec spec;
   read_shape(g, spec);
@@ -217,14 +226,10 @@ MeshGenerateSpec read_generate(MapReader& g) {
     g.finish();
     return spec;
   }
-  if (spec.shape == MeshGenerateSpec::Shape::cylinder) {
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder)
     g.forbid("borehole", "for a cylinder (a borehole is cut in a box)");
-  } else {
-    g.declare("borehole");
-    MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("borehole"), g.doc_key_path("borehole"), g.where());
-    read_borehole(unused, spec, false);
-  }
+  else
+    declare_section(g, "borehole", [&](MapReader& r) { read_borehole(r, spec, false); });
   if (g.has("graded") && spec.shape == MeshGenerateSpec::Shape::box) {  // a graded lattice
     MapReader r = g.section("graded", false);
     spec.graded = read_grading(r, spec, g.has("box") && g.ok("box") && g.ok("origin"));
@@ -233,14 +238,10 @@ MeshGenerateSpec read_generate(MapReader& g) {
     g.finish();
     return spec;
   }
-  if (spec.shape == MeshGenerateSpec::Shape::cylinder) {
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder)
     g.forbid("graded", "for a cylinder (a lattice is a box)");
-  } else {
-    g.declare("graded");
-    MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("graded"), g.doc_key_path("graded"), g.where());
-    read_grading(unused, spec, false);
-  }
+  else
+    declare_section(g, "graded", [&](MapReader& r) { read_grading(r, spec, false); });
   if (g.has("cells") && spec.shape == MeshGenerateSpec::Shape::box) {  // a lattice: no sizing, no notches
     spec.cells = read_cells(g);
     for (auto key : {"size_min", "size_max", "grading", "seed", "notches"})

@@ -14,13 +14,12 @@
 namespace rift {
 
 using fracture_flow::books_table;
+using fracture_flow::vertex_table;
 
 namespace {
 // Blocks of the parallel loops: fixed sizes, so every sum is the same on any thread count.
 constexpr size_t kTriangleGrain = 1024, kEntryGrain = 2048;
 }  // namespace
-
-using fracture_flow::vertex_table;
 
 FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
                                        std::vector<uint8_t> vent_vertex, WellWall wall)
@@ -91,12 +90,14 @@ void FractureFlowSystem::add_well_wall() {
   local_of_row_[well_row_] = 0;
   row_of_local_.push_back(int32_t(well_row_));
   wall_entry_.clear();
+  wall_entries_ = 0;
   for (int32_t node : wall_.face_nodes) {
     if (entry_of_node_[size_t(node)] < 0) {
       entry_of_node_[size_t(node)] = int32_t(node_.size());
       node_.push_back(node);
       node_vertex_.push_back(0);
       felt_.push_back(0.0);
+      ++wall_entries_;
     }
     wall_entry_.push_back(entry_of_node_[size_t(node)]);
   }
@@ -245,12 +246,10 @@ void FractureFlowSystem::geometry() {
 // summed over the wall's nodes (to first order in the displacement). The well sits at the injection point.
 void FractureFlowSystem::wall_geometry(std::span<const double> x) {
   const auto x0 = store_.table(solid::node_table).span<const double>("x0");
-  size_t wall_entries = 0;
-  for (int32_t e : wall_entry_) wall_entries = std::max(wall_entries, size_t(e) + 1);
-  wall_area_vector_.assign(3 * wall_entries, 0.0);
+  wall_area_vector_.assign(3 * wall_entries_, 0.0);
   kernels::add_wall_area_vectors(wall_.face_nodes, wall_entry_, x, wall_area_vector_);
   hole_change_ = 0.0;
-  for (size_t e = 0; e < wall_entries; ++e) {
+  for (size_t e = 0; e < wall_entries_; ++e) {
     const size_t n = size_t(node_[e]);
     for (size_t d = 0; d < 3; ++d) {
       area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];

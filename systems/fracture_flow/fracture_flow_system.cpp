@@ -258,6 +258,7 @@ void FractureFlowSystem::wall_geometry(std::span<const double> x) {
     }
   }
   volume_[0] += hole_change_;
+  floor_volume_[0] += hole_change_;  // the hole does not close like a crack: only the crack part is floored
   for (size_t d = 0; d < 3; ++d) vertex_x_[d] = spec_.point[d];
 }
 
@@ -494,8 +495,11 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     return;
   }
 
-  // The corners move for the pressure change and carry the new pressure into the next node pass.
-  for (size_t i = 0; i < node_.size(); ++i) now_[i] = pressure_[size_t(node_vertex_[i])];
+  // The corners move for the pressure change their walls take within the step (the new pressure, or for
+  // a vertex closed onto its floor only as far as the floor) and carry the new pressure into the next
+  // node pass.
+  const auto wall_pressure = flow_.wall_pressure();
+  for (size_t i = 0; i < node_.size(); ++i) now_[i] = wall_pressure[size_t(node_vertex_[i])];
   Table& solid_nodes = store_.table(solid::node_table);
   const auto x = solid_nodes.span<double>("x"), v = solid_nodes.span<double>("v");
   const double correction_work =
@@ -505,14 +509,14 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
   auto force = solid_nodes.span<double>("crack_force");
   for (size_t i = 0; i < node_.size(); ++i) {
-    felt_[i] = now_[i];
-    for (size_t d = 0; d < 3; ++d) force[3 * size_t(node_[i]) + d] = now_[i] * area_vector_[3 * i + d];
+    felt_[i] = pressure_[size_t(node_vertex_[i])];
+    for (size_t d = 0; d < 3; ++d) force[3 * size_t(node_[i]) + d] = felt_[i] * area_vector_[3 * i + d];
   }
 
   double vented = 0.0, fluid_work = 0.0, total = 0.0;
   for (size_t v = 0; v < nv; ++v) {
     const size_t r = size_t(row_of_local_[v]);
-    const double new_volume = volume_[v] + flow_.compliance_used()[v] * (pressure_[v] - applied_[v]);
+    const double new_volume = flow_.volume_used()[v];
     fluid_work += 0.5 * (previous_pressure_[v] + pressure_[v]) * (new_volume - volume[r] - joining_[v]);
     if (v == w)
       injected += exchanged_[v];

@@ -173,15 +173,55 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
   return "";
 }
 
-std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& books) {
+void NetworkFlow::start_step(const NetworkFlowStepInput& in) {
   compliance_.assign(in.compliance.begin(), in.compliance.end());
+  closed_.assign(vertices_, 0);
+}
+
+bool NetworkFlow::closing(const NetworkFlowStepInput& in, size_t v, double p) {
+  if (in.floor_volume.empty() || closed_[v] || volume_at(in, v, p) >= in.floor_volume[v]) return false;
+  if (compliance_[v] != in.compliance_open[v]) {
+    compliance_[v] = in.compliance_open[v];
+  } else {
+    closed_[v] = 1;
+    compliance_[v] = 0.0;
+  }
+  return true;
+}
+
+void NetworkFlow::close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
+  for (size_t v = 0; v < vertices_; ++v)
+    if (FlowRole(s.role[v]) == FlowRole::fixed)
+      while (closing(in, v, in.fixed_pressure[v])) {
+      }
+}
+
+void NetworkFlow::finish_step(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
+  volume_used_.resize(vertices_);
+  wall_pressure_.resize(vertices_);
+  for (size_t v = 0; v < vertices_; ++v) {
+    volume_used_[v] = volume_at(in, v, s.pressure[v]);
+    wall_pressure_[v] = s.pressure[v];
+    if (closed_[v])
+      wall_pressure_[v] = in.compliance_open[v] > 0.0
+                              ? in.applied[v] + (in.floor_volume[v] - in.volume[v]) / in.compliance_open[v]
+                              : in.applied[v];
+  }
+}
+
+std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& books) {
+  start_step(in);
   if (viscosity_ <= 0.0) return zero_viscosity_step(in, s, books);
+  close_fixed(in, s);
   transmissibilities(in);
   // A wet vertex whose pressure would fall below the lag pressure cavitates: it holds the lag pressure
   // and the step is solved again, so that no fluid is drawn from a vertex that cannot give it. A wet
   // vertex whose volume would fall below its floor volume is closing and takes its open corners'
-  // compliance (NetworkFlowStepInput::floor_volume). Each pass only moves vertices one way (wet to filling,
-  // full compliance to open), so it ends within twice the vertex count; in practice in 1-3 passes.
+  // compliance (NetworkFlowStepInput::floor_volume); if it would still fall below, its walls close onto
+  // the floor and no further within the step (its linearised volume, and with it its mass, would
+  // otherwise go below zero when the walls are far more compliant than the fluid). Each pass only moves
+  // vertices one way (wet to filling; full compliance to open to closed), so it ends within three times
+  // the vertex count; in practice in 1-3 passes.
   for (size_t pass = 0;; ++pass) {
     if (std::string problem = solve_pressures(in, s); !problem.empty()) return problem;
     size_t changed = 0;
@@ -190,14 +230,12 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
       if (new_pressure_[v] < lag_pressure_) {
         s.role[v] = uint8_t(FlowRole::filling);
         ++changed;
-      } else if (!in.floor_volume.empty() && compliance_[v] != in.compliance_open[v] &&
-                 volume_at(in, v, new_pressure_[v]) < in.floor_volume[v]) {
-        compliance_[v] = in.compliance_open[v];
+      } else if (closing(in, v, new_pressure_[v])) {
         ++changed;
       }
     }
     if (changed == 0) break;
-    if (pass > 2 * vertices_) return "the fracture flow's cavitation passes did not settle";
+    if (pass > 3 * vertices_) return "the fracture flow's cavitation passes did not settle";
   }
   // Mass over the step along each edge, from i to j; fluid leaves only a wet or a fixed vertex.
   auto mobile = [&](size_t v) {
@@ -221,7 +259,8 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
 }
 
 std::string NetworkFlow::local_step(const NetworkFlowStepInput& in, NetworkFlowState& s) {
-  compliance_.assign(in.compliance.begin(), in.compliance.end());
+  start_step(in);
+  close_fixed(in, s);
   return update_roles(in, s, false);
 }
 
@@ -264,6 +303,7 @@ std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlo
     s.pressure[v] = p;
     s.role[v] = uint8_t(role);
   }
+  finish_step(in, s);
   return "";
 }
 
@@ -336,6 +376,7 @@ std::string NetworkFlow::zero_viscosity_step(const NetworkFlowStepInput& in, Net
   for (size_t r = 0; r < vertices_; ++r)
     if (fixed_vertex[r] >= 0 && size_t(find(int32_t(r))) == r)
       s.exchanged[size_t(fixed_vertex[r])] -= mass[r];
+  finish_step(in, s);
   return "";
 }
 

@@ -44,7 +44,9 @@ struct NetworkFlowStepInput {
   // 1 per vertex, or empty: the compliance of the vertex's open corners only, and the volume its corners
   // hold at the aperture floor. A wet vertex whose volume V_pred + C (p - p_applied) would fall below the
   // floor volume is closing: its floored corners' volume does not follow their nodes, so it takes the open
-  // compliance instead and the step is solved again (an active set, like the cavitation's).
+  // compliance instead and the step is solved again (an active set, like the cavitation's). If even so it
+  // would fall below its floor (walls far more compliant than the fluid, drained fast), its walls close
+  // onto the floor within the step and no further: its volume is the floor volume, whatever its pressure.
   std::span<const double> compliance_open = {};
   std::span<const double> floor_volume = {};
 };
@@ -95,8 +97,12 @@ class NetworkFlow {
   size_t edge_count() const { return edge_v_.size() / 2; }
   size_t negative_transmissibilities() const { return negative_; }  // edges opposite obtuse angles, last step
   int cg_iterations() const { return cg_iterations_; }  // of the last solve (0 for the factorisation)
-  // The compliance each vertex took in the last step (NetworkFlowStepInput::compliance_open).
-  std::span<const double> compliance_used() const { return compliance_; }
+  // After a step, per vertex: the volume the step gave it at its new pressure (the fluid's volume), and
+  // the pressure its walls take within the step: its new pressure, except for a vertex closed onto its
+  // floor, whose walls move only as far as the floor (the pressure change that brings its open corners
+  // there: p_applied + (V_floor - V_pred) / C_open), the rest being carried by the rock.
+  std::span<const double> volume_used() const { return volume_used_; }
+  std::span<const double> wall_pressure() const { return wall_pressure_; }
 
  private:
   void transmissibilities(const NetworkFlowStepInput& in);
@@ -108,6 +114,13 @@ class NetworkFlow {
   // below the lag pressure cavitates back to filling.
   // from_solve: wet vertices keep the solve's pressure (else they take the pressure of their mass).
   std::string update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s, bool from_solve);
+  // One closing stage down for a vertex whose volume at p would fall below its floor: full compliance to
+  // its open corners' only, then closed onto the floor. Returns whether it moved.
+  bool closing(const NetworkFlowStepInput& in, size_t v, double p);
+  // A fixed vertex refills to its pressure: its volume there must not fall below its floor either.
+  void close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s);
+  void start_step(const NetworkFlowStepInput& in);
+  void finish_step(const NetworkFlowStepInput& in, const NetworkFlowState& s);
 
   kernels::FluidEos eos_;
   double viscosity_, lag_pressure_;
@@ -121,9 +134,11 @@ class NetworkFlow {
   std::vector<double> part_mass_, part_v0_, part_compliance_;  // zero-viscosity mode, per component
   std::vector<int64_t> part_fixed_;
   std::vector<double> compliance_;  // per vertex, this step: the input's, or the open one once closing
+  std::vector<uint8_t> closed_;     // per vertex, this step: closed onto its floor (volume = floor volume)
+  std::vector<double> volume_used_, wall_pressure_;
   double volume_at(const NetworkFlowStepInput& in, size_t v, double p) const {
-    return in.volume[v] + compliance_[v] * (p - in.applied[v]);
-  }                                                 // zero-viscosity mode: each vertex's connected component
+    return closed_[v] ? in.floor_volume[v] : in.volume[v] + compliance_[v] * (p - in.applied[v]);
+  }
   std::vector<int32_t> diagonal_slot_, edge_slot_;  // positions in the matrix's value array
   Eigen::SparseMatrix<double> matrix_;
   NetworkSolver solver_kind_;

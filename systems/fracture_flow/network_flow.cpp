@@ -175,25 +175,44 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
 
 void NetworkFlow::start_step(const NetworkFlowStepInput& in) {
   compliance_.assign(in.compliance.begin(), in.compliance.end());
-  closed_.assign(vertices_, 0);
+  stage_.assign(vertices_, uint8_t(Closing::open));
 }
 
-bool NetworkFlow::closing(const NetworkFlowStepInput& in, size_t v, double p) {
-  if (in.floor_volume.empty() || closed_[v] || volume_at(in, v, p) >= in.floor_volume[v]) return false;
-  if (compliance_[v] != in.compliance_open[v]) {
-    compliance_[v] = in.compliance_open[v];
-  } else {
-    closed_[v] = 1;
-    compliance_[v] = 0.0;
-  }
-  return true;
+void NetworkFlow::set_stage(const NetworkFlowStepInput& in, size_t v, Closing stage) {
+  stage_[v] = uint8_t(stage);
+  compliance_[v] = stage == Closing::open           ? in.compliance[v]
+                   : stage == Closing::open_corners ? in.compliance_open[v]
+                                                    : 0.0;
+}
+
+// The walls' volume at p under a stage, and whether a vertex at p holds at least its floor under it: for a
+// fixed vertex (refilled to its pressure exactly) by its volume; for a wet one also by the mass the step's
+// linearised balance leaves it, rho V at its old pressure plus the storage times the change, which falls
+// short of rho(p) V(p) by (rho0 / K_f) C dp^2: where walls far more compliant than the fluid nearly close
+// within the step, a volume just above the floor can come with a negative mass.
+bool NetworkFlow::stage_holds(const NetworkFlowStepInput& in, const NetworkFlowState& s, size_t v, double p,
+                              Closing stage) const {
+  if (stage == Closing::closed) return true;
+  const double c = stage == Closing::open ? in.compliance[v] : in.compliance_open[v];
+  const double floor = in.floor_volume[v];
+  if (in.volume[v] + c * (p - in.applied[v]) < floor) return false;
+  if (FlowRole(s.role[v]) == FlowRole::fixed) return true;
+  const double p_old = s.pressure[v], v_old = in.volume[v] + c * (p_old - in.applied[v]);
+  const double storage = eos_.density0 / eos_.bulk_modulus * v_old + eos_.density(p_old) * c;
+  return eos_.density(p_old) * v_old + storage * (p - p_old) >= eos_.density(p) * floor;
+}
+
+NetworkFlow::Closing NetworkFlow::stage_at(const NetworkFlowStepInput& in, const NetworkFlowState& s,
+                                           size_t v, double p) const {
+  for (Closing c : {Closing::open, Closing::open_corners})
+    if (stage_holds(in, s, v, p, c)) return c;
+  return Closing::closed;
 }
 
 void NetworkFlow::close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
+  if (in.floor_volume.empty()) return;
   for (size_t v = 0; v < vertices_; ++v)
-    if (FlowRole(s.role[v]) == FlowRole::fixed)
-      while (closing(in, v, in.fixed_pressure[v])) {
-      }
+    if (FlowRole(s.role[v]) == FlowRole::fixed) set_stage(in, v, stage_at(in, s, v, in.fixed_pressure[v]));
 }
 
 void NetworkFlow::finish_step(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
@@ -202,7 +221,7 @@ void NetworkFlow::finish_step(const NetworkFlowStepInput& in, const NetworkFlowS
   for (size_t v = 0; v < vertices_; ++v) {
     volume_used_[v] = volume_at(in, v, s.pressure[v]);
     wall_pressure_[v] = s.pressure[v];
-    if (closed_[v])
+    if (Closing(stage_[v]) == Closing::closed)
       wall_pressure_[v] = in.compliance_open[v] > 0.0
                               ? in.applied[v] + (in.floor_volume[v] - in.volume[v]) / in.compliance_open[v]
                               : in.applied[v];
@@ -214,14 +233,15 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
   if (viscosity_ <= 0.0) return zero_viscosity_step(in, s, books);
   close_fixed(in, s);
   transmissibilities(in);
-  // A wet vertex whose pressure would fall below the lag pressure cavitates: it holds the lag pressure
-  // and the step is solved again, so that no fluid is drawn from a vertex that cannot give it. A wet
-  // vertex whose volume would fall below its floor volume is closing and takes its open corners'
-  // compliance (NetworkFlowStepInput::floor_volume); if it would still fall below, its walls close onto
-  // the floor and no further within the step (its linearised volume, and with it its mass, would
-  // otherwise go below zero when the walls are far more compliant than the fluid). Each pass only moves
-  // vertices one way (wet to filling; full compliance to open to closed), so it ends within three times
-  // the vertex count; in practice in 1-3 passes.
+  // Two active sets, solved again until neither changes:
+  // - cavitation: a wet vertex whose pressure would fall below the lag pressure holds the lag pressure, so
+  //   that no fluid is drawn from a vertex that cannot give it (one way: wet to filling);
+  // - closing: a wet vertex takes the first of its stages that holds its floor at the new pressure (all
+  //   corners' compliance; its open corners' only, since a floored corner's volume does not follow its
+  //   nodes; closed onto the floor, whose walls close no further within the step). The stage follows
+  //   the pressure both ways: a vertex judged closing in one pass (its neighbours still wet) may be fed
+  //   in the next (they cavitated) and must open again, or an injection into it would find rigid walls.
+  //   After kFreePasses passes a stage only moves down, so the passes end.
   for (size_t pass = 0;; ++pass) {
     if (std::string problem = solve_pressures(in, s); !problem.empty()) return problem;
     size_t changed = 0;
@@ -230,12 +250,17 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
       if (new_pressure_[v] < lag_pressure_) {
         s.role[v] = uint8_t(FlowRole::filling);
         ++changed;
-      } else if (closing(in, v, new_pressure_[v])) {
+        continue;
+      }
+      if (in.floor_volume.empty()) continue;
+      const Closing stage = stage_at(in, s, v, new_pressure_[v]);
+      if (stage != Closing(stage_[v]) && (pass < kFreePasses || stage > Closing(stage_[v]))) {
+        set_stage(in, v, stage);
         ++changed;
       }
     }
     if (changed == 0) break;
-    if (pass > 3 * vertices_) return "the fracture flow's cavitation passes did not settle";
+    if (pass > kFreePasses + 3 * vertices_) return "the fracture flow's cavitation passes did not settle";
   }
   // Mass over the step along each edge, from i to j; fluid leaves only a wet or a fixed vertex.
   auto mobile = [&](size_t v) {
@@ -290,11 +315,15 @@ std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlo
     // the next step's right-hand side, so it does not accumulate. Inverting the equation of state instead
     // would amplify the mass's rounding by K_f / (rho0 V) for a stiff fluid in a rigid crack. A vertex
     // that has just filled takes the pressure of its mass.
+    // A vertex that has just filled (its walls opening under the fluid's arrival, whatever stage the
+    // solve's passes gave it while it held the lag pressure) takes all its corners' compliance.
     double p = lag_pressure_;
-    if (role == FlowRole::wet)
-      p = from_solve && FlowRole(s.role[v]) == FlowRole::wet
-              ? new_pressure_[v]
-              : kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], compliance_[v], in.applied[v]);
+    if (role == FlowRole::wet && from_solve && FlowRole(s.role[v]) == FlowRole::wet) {
+      p = new_pressure_[v];
+    } else if (role == FlowRole::wet) {
+      set_stage(in, v, Closing::open);
+      p = kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], compliance_[v], in.applied[v]);
+    }
     if (role == FlowRole::wet && p < lag_pressure_) {
       role = FlowRole::filling;
       p = lag_pressure_;

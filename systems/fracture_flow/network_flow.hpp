@@ -114,9 +114,13 @@ class NetworkFlow {
   // below the lag pressure cavitates back to filling.
   // from_solve: wet vertices keep the solve's pressure (else they take the pressure of their mass).
   std::string update_roles(const NetworkFlowStepInput& in, NetworkFlowState& s, bool from_solve);
-  // One closing stage down for a vertex whose volume at p would fall below its floor: full compliance to
-  // its open corners' only, then closed onto the floor. Returns whether it moved.
-  bool closing(const NetworkFlowStepInput& in, size_t v, double p);
+  // How far a vertex's walls may close within the step (NetworkFlowStepInput::floor_volume).
+  enum class Closing : uint8_t { open = 0, open_corners = 1, closed = 2 };
+  static constexpr size_t kFreePasses = 8;
+  void set_stage(const NetworkFlowStepInput& in, size_t v, Closing stage);
+  bool stage_holds(const NetworkFlowStepInput& in, const NetworkFlowState& s, size_t v, double p,
+                   Closing stage) const;
+  Closing stage_at(const NetworkFlowStepInput& in, const NetworkFlowState& s, size_t v, double p) const;
   // A fixed vertex refills to its pressure: its volume there must not fall below its floor either.
   void close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s);
   void start_step(const NetworkFlowStepInput& in);
@@ -134,10 +138,11 @@ class NetworkFlow {
   std::vector<double> part_mass_, part_v0_, part_compliance_;  // zero-viscosity mode, per component
   std::vector<int64_t> part_fixed_;
   std::vector<double> compliance_;  // per vertex, this step: the input's, or the open one once closing
-  std::vector<uint8_t> closed_;     // per vertex, this step: closed onto its floor (volume = floor volume)
+  std::vector<uint8_t> stage_;      // per vertex, this step: Closing
   std::vector<double> volume_used_, wall_pressure_;
   double volume_at(const NetworkFlowStepInput& in, size_t v, double p) const {
-    return closed_[v] ? in.floor_volume[v] : in.volume[v] + compliance_[v] * (p - in.applied[v]);
+    return Closing(stage_[v]) == Closing::closed ? in.floor_volume[v]
+                                                 : in.volume[v] + compliance_[v] * (p - in.applied[v]);
   }
   std::vector<int32_t> diagonal_slot_, edge_slot_;  // positions in the matrix's value array
   Eigen::SparseMatrix<double> matrix_;

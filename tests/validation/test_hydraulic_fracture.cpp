@@ -369,30 +369,40 @@ TEST(HydraulicFracture, ViscousInjectionIsDeterministicAndRestartsBitForBit) {
   validation::expect_same_bits_on_threads_and_restart(scene, 400);
 }
 
+// The radial scenes on 1/6 m cells (theirs are 1/8 m, which the benchmarks use): a third of the run time,
+// within the bounds (the refinement study in docs/hydraulic-fracture.md gives both meshes and 1/10 m).
+const std::vector<std::string> kRadialCoarse{"mesh.generate.graded.size=0.1666666666666667",
+                                             "mesh.generate.graded.fine_min=[0, 0, -0.3333333333333333]",
+                                             "mesh.generate.graded.fine_max=[3.0, 3.0, 0.3333333333333333]",
+                                             "solid.fracture.box_min=[-1, -1, -0.15]",
+                                             "solid.fracture.box_max=[3.0, 3.0, 0.15]"};
+
 // Radial (penny) fracture in the toughness regime (scenes/validation/radial_toughness.yaml: zero
 // viscosity, K_m = infinity, quarter model on a graded lattice): radius (of the quarter penny with the
 // network's area), centre opening and well pressure against the K-vertex R = 0.8546 (E' Q0 t / K')^(2/5),
 // w0 = 0.6537 (K'^4 Q0 t / E'^4)^(1/5), p = 0.3004 (K'^6 / (E' Q0 t))^(1/5) at 0.05 / 0.075 / 0.1 s, as
 // the KGD case: the mean of measured / closed form over the 10 ms before each time, bound 10 % (the
-// issue's), for the same reasons (cohesive zone of l_ch = 4 cells, linear tets, finite block: 2.7 final
-// radii to the faces). Measured: radius +7.0 / +5.7 / +5.2 %, centre opening +1.4 / +1.6 / +1.5 %, net
-// pressure -0.1 / -1.1 / -2.4 %. The fracture energy is checked on KGD only: a penny's front lengthens as
-// it grows, and the process zone along it with it (the dissipation's slope against the broken area is
-// 113 J/m^2 for G_I = 93.75; fits with a term per front length give 87 - 98 J/m^2 depending on the
-// model of the zone, too uncertain for a bound).
+// issue's), for the same reasons (cohesive zone of l_ch = 3 cells, linear tets, finite block: 2.7 final
+// radii to the faces). Measured on 1/6 m cells: radius +7.9 / +6.6 / +5.2 %, centre opening +2.1 / +2.1 /
+// +2.7 %, net pressure +0.2 / -1.0 / -1.4 %. The fracture energy is checked on KGD only: a penny's front
+// lengthens as it grows, and the process zone along it with it (the dissipation's slope against the broken
+// area is 113 J/m^2 for G_I = 93.75 on 1/8 m cells, 115 on 1/6; fits with a term per front length give 87 -
+// 98 J/m^2 depending on the model of the zone, too uncertain for a bound).
 TEST(HydraulicFracture, RadialToughnessDominatedFollowsTheKVertex) {
-  expect_vertex(run_against_vertex("radial_toughness.yaml", {}, radial_toughness_vertex, 0.0, kRadialGauge),
-                0.10);
+  expect_vertex(
+      run_against_vertex("radial_toughness.yaml", kRadialCoarse, radial_toughness_vertex, 0.0, kRadialGauge),
+      0.10);
 }
 
 // Radial fracture in the viscosity regime (scenes/validation/radial_viscous.yaml: mu = 4 mPa s, K_m = 0.46
 // at 0.1 s, 3 MPa across the crack plane to close the dry lag as in kgd_viscous.yaml): the radius against
 // the M-vertex R = 0.6976 (E' Q0^3 t^4 / mu')^(1/9) at 0.05 / 0.075 / 0.1 s, bound 15 % (the for
 // this regime: the starter penny is a memory the self-similar solution lacks, the measured radius counts
-// the wet process zone, one mesh). Measured: +9.4 / +7.9 / +7.1 %.
+// the wet process zone). Measured on 1/6 m cells: +12.2 / +10.1 / +8.7 %.
 TEST(HydraulicFracture, RadialViscosityDominatedFollowsTheMVertex) {
-  expect_vertex(run_against_vertex("radial_viscous.yaml", {}, radial_viscosity_vertex, 3.0e6, kRadialGauge),
-                0.15);
+  expect_vertex(
+      run_against_vertex("radial_viscous.yaml", kRadialCoarse, radial_viscosity_vertex, 3.0e6, kRadialGauge),
+      0.15);
 }
 
 // Venting (scenes/validation/vent_slot.yaml): a crack driven from a 1 m starter to the open face of a 2 m

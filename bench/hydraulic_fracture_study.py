@@ -12,7 +12,7 @@ over the 10 ms before 0.05, 0.075 and 0.1 s (the tests' measure):
   radial_toughness  penny, K-vertex: R = 0.8546 (E' Q0 t / K')^(2/5), p = 0.3004 (K'^6 / (E' Q0 t))^(1/5);
   radial_viscous    penny, M-vertex: R = 0.6976 (E' Q0^3 t^4 / mu')^(1/9);
   --borehole sizes  borehole_breakdown.yaml at those wall cell sizes: the first softening's pressure
-                    against 3 sigma_h - sigma_H + T.
+                    against 3 sigma_h - sigma_H + T (--penalty: joint penalties in multiples of E).
 Usage: bench/hydraulic_fracture_study.py build/ci/rift [--cells 4,8,16] [--cases kgd,radial_toughness]
        [--borehole 0.004,0.002] [--json out.json]
 (Debian's python3 with python3-h5py, which scripts/deps.sh installs.)
@@ -153,12 +153,15 @@ def radial(rift, n, tmp, scene):
     return [row]
 
 
-def borehole(rift, size, tmp):
-    """Borehole breakdown: the well's pressure when the first joint softens, against Hubbert-Willis."""
-    out = os.path.join(tmp, f"borehole_{size}")
+def borehole(rift, size, tmp, penalty=None):
+    """Borehole breakdown: the well's pressure when the first joint softens, against Hubbert-Willis.
+    penalty: the joints' penalty in multiples of E (None: the scene's default, 10 E)."""
+    out = os.path.join(tmp, f"borehole_{size}_{penalty}")
     sets = [f"mesh.generate.borehole.size={size}", f"mesh.generate.box=[0.5, 1.0, {size}]",
             f"fracture_flow.injection.point=[0, 0, {size / 2}]",
             f"fracture_flow.injection.well_volume={math.pi * 0.05 ** 2 * size / 2}", "output.fields=[pressure]"]
+    if penalty is not None:
+        sets.append(f"solid.materials[0].fracture.penalty={penalty * E}")
     args = [rift, "run", os.path.join(ROOT, "scenes/validation/borehole_breakdown.yaml"), "-o", out, "--threads",
             "2", "-q"]
     for x in sets:
@@ -166,7 +169,7 @@ def borehole(rift, size, tmp):
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
     r = list(csv.DictReader(open(os.path.join(out, "timeseries.csv"))))
     first = next(x for x in r if float(x["flow_crack_area"]) > 0)
-    return [{"case": "borehole", "wall_cell_m": size,
+    return [{"case": "borehole", "wall_cell_m": size, "penalty_over_E": penalty if penalty else 10,
              "initiation": float(first["flow_well_pressure"]) / (3 * 3.0e6 - 5.0e6 + 2.0e6) - 1}]
 
 
@@ -179,6 +182,7 @@ def main():
     ap.add_argument("--cells", default="4,8,16", help="elements per metre (per crack half-length a = 1 m)")
     ap.add_argument("--cases", default=",".join(CASES), help="of " + ", ".join(CASES))
     ap.add_argument("--borehole", default="", help="wall cell sizes [m] of the borehole case, e.g. 0.004,0.002")
+    ap.add_argument("--penalty", default="", help="joint penalties of the borehole case in multiples of E, e.g. 10,30")
     ap.add_argument("--json")
     a = ap.parse_args()
     cases = a.cases.split(",")
@@ -200,7 +204,8 @@ def main():
                 if scene in cases:
                     report(radial(a.rift, n, tmp, scene))
         for size in [float(x) for x in a.borehole.split(",") if x]:
-            report(borehole(a.rift, size, tmp))
+            for penalty in [float(x) for x in a.penalty.split(",") if x] or [None]:
+                report(borehole(a.rift, size, tmp, penalty))
     if a.json:
         with open(a.json, "w") as f:
             json.dump(rows, f, indent=1)

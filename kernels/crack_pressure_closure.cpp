@@ -2,29 +2,26 @@
 
 namespace rift::kernels {
 
-void add_pressure_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
-                               std::span<const double> area, std::span<double> area_vector) {
-  for (size_t t = 0; t < area.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      for (int d = 0; d < 3; ++d) {
-        const double a = area[t] / 3.0 * normal[3 * t + size_t(d)];
-        area_vector[3 * size_t(corner_entries[6 * t + size_t(k)]) + size_t(d)] += a;
-        area_vector[3 * size_t(corner_entries[6 * t + 3 + size_t(k)]) + size_t(d)] -= a;
-      }
-}
-
-void add_open_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
-                           std::span<const double> area, std::span<const double> opening, double floor,
-                           std::span<double> open_area_vector) {
-  for (size_t t = 0; t < area.size(); ++t)
-    for (size_t k = 0; k < 3; ++k) {
-      if (!(opening[3 * t + k] > floor)) continue;
+void gather_area_vectors(std::span<const int32_t> corner_start, std::span<const int32_t> corners,
+                         std::span<const double> normal, std::span<const double> area,
+                         std::span<const double> opening, double floor, std::span<double> area_vector,
+                         std::span<double> open_area_vector, size_t begin, size_t end) {
+  for (size_t e = begin; e < end; ++e) {
+    double all[3] = {0.0, 0.0, 0.0}, open[3] = {0.0, 0.0, 0.0};
+    for (int32_t k = corner_start[e]; k < corner_start[e + 1]; ++k) {
+      const size_t t = size_t(corners[size_t(k)]) / 6, c = size_t(corners[size_t(k)]) % 6;
+      const bool side_a = c<3, is_open = opening[3 * t + c % 3]> floor;
       for (size_t d = 0; d < 3; ++d) {
         const double a = area[t] / 3.0 * normal[3 * t + d];
-        open_area_vector[3 * size_t(corner_entries[6 * t + k]) + d] += a;
-        open_area_vector[3 * size_t(corner_entries[6 * t + 3 + k]) + d] -= a;
+        all[d] = side_a ? all[d] + a : all[d] - a;
+        if (is_open) open[d] = side_a ? open[d] + a : open[d] - a;
       }
     }
+    for (size_t d = 0; d < 3; ++d) {
+      area_vector[3 * e + d] = all[d];
+      open_area_vector[3 * e + d] = open[d];
+    }
+  }
 }
 
 void add_wall_area_vectors(std::span<const int32_t> face_nodes, std::span<const int32_t> face_entries,

@@ -31,17 +31,16 @@ struct CrackClosureNodes {
   std::span<const double> open_area_vector = {};
 };
 
-// Adds each wet triangle's pressure area vectors to its corners: corner k of side A (first face) gets
-// +A/3 n, its facing corner on side B gets -A/3 n (n from B into A, the crack triangle's normal).
-// corner_entries: 6 per triangle, the entries (rows of area_vector) of the joint's corners; normal 3 and
-// area 1 per triangle.
-void add_pressure_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
-                               std::span<const double> area, std::span<double> area_vector);
-
-// Like add_pressure_area_vectors, for the corners whose opening (3 per triangle) exceeds `floor` only.
-void add_open_area_vectors(std::span<const int32_t> corner_entries, std::span<const double> normal,
-                           std::span<const double> area, std::span<const double> opening, double floor,
-                           std::span<double> open_area_vector);
+// The pressure area vectors of entries [begin, end) (rows of area_vector), each gathered from its faces'
+// corners: corner k of side A (k < 3) of a wet triangle adds +A/3 n, its facing corner on side B (k >= 3)
+// -A/3 n (n from B into A, the crack triangle's normal); open_area_vector the same over the corners whose
+// opening (3 per triangle) exceeds `floor`. corners: per entry, its corners as 6 t + k in triangle order,
+// from corners[corner_start[e]] to corners[corner_start[e + 1]]; normal 3 and area 1 per triangle. Each
+// entry sums in triangle order, so any split of the entries into blocks gives the same bits.
+void gather_area_vectors(std::span<const int32_t> corner_start, std::span<const int32_t> corners,
+                         std::span<const double> normal, std::span<const double> area,
+                         std::span<const double> opening, double floor, std::span<double> area_vector,
+                         std::span<double> open_area_vector, size_t begin, size_t end);
 
 // A wetted wall (a borehole): each face pushes on the rock with p A along its inward normal, A/3 on each
 // corner. face_nodes: 3 per face, its solid nodes, ordered so that (x1 - x0) x (x2 - x0) points out of

@@ -16,11 +16,6 @@ namespace rift {
 using fracture_flow::books_table;
 using fracture_flow::vertex_table;
 
-namespace {
-// Blocks of the parallel loops: fixed sizes, so every sum is the same on any thread count.
-constexpr size_t kTriangleGrain = 1024, kEntryGrain = 2048;
-}  // namespace
-
 FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spec, TimeFunction mass_damping,
                                        std::vector<uint8_t> vent_vertex, WellWall wall)
     : store_(store),
@@ -193,92 +188,9 @@ void FractureFlowSystem::network_changed() {
   area_vector_.assign(3 * ne, 0.0);
   open_area_vector_.assign(3 * ne, 0.0);
   now_.assign(ne, 0.0);
-}
-
-// The wet triangles' mid-surfaces from the nodes' current positions; the vertices' volumes (apertures
-// floored), areas and positions; the corner entries' pressure area vectors.
-void FractureFlowSystem::geometry() {
-  const auto x = store_.table(solid::node_table).span<const double>("x");
-  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-  std::fill(volume_.begin(), volume_.end(), 0.0);
-  std::fill(floor_volume_.begin(), floor_volume_.end(), 0.0);
-  std::fill(vertex_area_.begin(), vertex_area_.end(), 0.0);
-  std::fill(vertex_x_.begin(), vertex_x_.end(), 0.0);
-  std::fill(weight_.begin(), weight_.end(), 0.0);
-  // Each triangle from its own joint's nodes (blocks in parallel), then its corners' shares added to the
-  // vertices in triangle order (serial: the sums' order does not depend on the threads).
-  parallel_for(joints_.size(), kTriangleGrain, [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t) {
-      const double* corner[6];
-      for (size_t c = 0; c < 6; ++c) corner[c] = &x[3 * size_t(joint_nodes[6 * size_t(joints_[t]) + c])];
-      const kernels::CrackTriangle tri = kernels::crack_triangle(corner);
-      area_[t] = tri.area;
-      for (size_t d = 0; d < 3; ++d) normal_[3 * t + d] = tri.normal[d];
-      for (size_t c = 0; c < 3; ++c) {
-        opening_[3 * t + c] = tri.opening[c];
-        aperture_[3 * t + c] = std::max(tri.opening[c], spec_.aperture_floor);
-        for (size_t d = 0; d < 3; ++d) tri_x_[9 * t + 3 * c + d] = tri.mid[c][d];
-      }
-    }
-  });
-  for (size_t t = 0; t < joints_.size(); ++t)
-    for (size_t c = 0; c < 3; ++c) {
-      const size_t v = size_t(triangles_[3 * t + c]);
-      floor_volume_[v] += area_[t] * spec_.aperture_floor / 3.0;
-      volume_[v] += area_[t] * aperture_[3 * t + c] / 3.0;
-      vertex_area_[v] += area_[t] / 3.0;
-      weight_[v] += 1.0;
-      for (size_t d = 0; d < 3; ++d) vertex_x_[3 * v + d] += tri_x_[9 * t + 3 * c + d];
-    }
-  for (size_t v = 0; v < weight_.size(); ++v)
-    for (int d = 0; d < 3; ++d)
-      if (weight_[v] > 0.0) vertex_x_[3 * v + size_t(d)] /= weight_[v];
-  std::fill(area_vector_.begin(), area_vector_.end(), 0.0);
-  kernels::add_pressure_area_vectors(corner_entry_, normal_, area_, area_vector_);
-  std::fill(open_area_vector_.begin(), open_area_vector_.end(), 0.0);
-  kernels::add_open_area_vectors(corner_entry_, normal_, area_, opening_, spec_.aperture_floor,
-                                 open_area_vector_);
-  if (well_is_wall()) wall_geometry(x);
-}
-
-// The borehole's wall: its pressure area vectors join its nodes' entries (always open: the hole does
-// not close), and the well's volume takes the hole's change from the reference positions, a . (x - x0)
-// summed over the wall's nodes (to first order in the displacement). The well sits at the injection point.
-void FractureFlowSystem::wall_geometry(std::span<const double> x) {
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
-  wall_area_vector_.assign(3 * wall_entries_, 0.0);
-  kernels::add_wall_area_vectors(wall_.face_nodes, wall_entry_, x, wall_area_vector_);
-  hole_change_ = 0.0;
-  for (size_t e = 0; e < wall_entries_; ++e) {
-    const size_t n = size_t(node_[e]);
-    for (size_t d = 0; d < 3; ++d) {
-      area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];
-      open_area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];
-      hole_change_ += wall_area_vector_[3 * e + d] * (x[3 * n + d] - x0[3 * n + d]);
-    }
-  }
-  volume_[0] += hole_change_;
-  floor_volume_[0] += hole_change_;  // the hole does not close like a crack: only the crack part is floored
-  for (size_t d = 0; d < 3; ++d) vertex_x_[d] = spec_.point[d];
-}
-
-// C per vertex, with all its corners and with the open ones only (kernels/crack_pressure_closure.hpp): each
-// entry's weights in parallel blocks, then added to the vertices in entry order.
-void FractureFlowSystem::closure_compliance(const kernels::CrackClosureNodes& closure,
-                                            const kernels::CrackClosureNodes& open_closure, double scale) {
-  entry_weight_.resize(2 * node_.size());
-  parallel_for(node_.size(), kEntryGrain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      entry_weight_[2 * i] = kernels::closure_weight(closure, i);
-      entry_weight_[2 * i + 1] = kernels::closure_weight(open_closure, i);
-    }
-  });
-  std::fill(compliance_.begin(), compliance_.end(), 0.0);
-  std::fill(compliance_open_.begin(), compliance_open_.end(), 0.0);
-  for (size_t i = 0; i < node_.size(); ++i) {
-    compliance_[size_t(node_vertex_[i])] += scale * entry_weight_[2 * i];
-    compliance_open_[size_t(node_vertex_[i])] += scale * entry_weight_[2 * i + 1];
-  }
+  vertex_corners_.build(triangles_, nv);
+  entry_corners_.build(corner_entry_, ne);
+  vertex_entries_.build(node_vertex_, nv);
 }
 
 // At t = 0 the initial cracks hold fluid at the initial pressure, and the well is the crack vertex nearest
@@ -436,14 +348,6 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   kernels::CrackClosureNodes open_closure = closure;
   open_closure.open_area_vector = open_area_vector_;
   closure_compliance(closure, open_closure, ctx.dt * ctx.dt * damping_factor);
-  std::fill(applied_.begin(), applied_.end(), 0.0);
-  for (size_t i = 0; i < node_.size(); ++i) {
-    const size_t n = size_t(node_[i]);
-    double a2 = 0.0;
-    for (size_t d = 0; d < 3; ++d)
-      if (free[3 * n + d]) a2 += area_vector_[3 * i + d] * area_vector_[3 * i + d];
-    applied_[size_t(node_vertex_[i])] += ctx.dt * ctx.dt * damping_factor * a2 * inv_mass[n] * felt_[i];
-  }
   for (size_t v = 0; v < nv; ++v)
     applied_[v] = compliance_[v] > 0.0 ? applied_[v] / compliance_[v] : pressure_[v];
   // The well's own storage: V_w(p) = well_volume + well_compliance (p - initial_pressure).
@@ -502,16 +406,18 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   for (size_t i = 0; i < node_.size(); ++i) now_[i] = wall_pressure[size_t(node_vertex_[i])];
   Table& solid_nodes = store_.table(solid::node_table);
   const auto x = solid_nodes.span<double>("x"), v = solid_nodes.span<double>("v");
+  auto force = solid_nodes.span<double>("crack_force");
   const double correction_work =
       parallel_sum(node_.size(), kEntryGrain, work_blocks_, [&](size_t b, size_t e) {
-        return kernels::apply_closure_block(closure, ctx.dt, damping_factor, felt_, now_, x, v, b, e);
+        const double work =
+            kernels::apply_closure_block(closure, ctx.dt, damping_factor, felt_, now_, x, v, b, e);
+        for (size_t i = b; i < e; ++i) {
+          felt_[i] = pressure_[size_t(node_vertex_[i])];
+          for (size_t d = 0; d < 3; ++d) force[3 * size_t(node_[i]) + d] = felt_[i] * area_vector_[3 * i + d];
+        }
+        return work;
       });
   store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
-  auto force = solid_nodes.span<double>("crack_force");
-  for (size_t i = 0; i < node_.size(); ++i) {
-    felt_[i] = pressure_[size_t(node_vertex_[i])];
-    for (size_t d = 0; d < 3; ++d) force[3 * size_t(node_[i]) + d] = felt_[i] * area_vector_[3 * i + d];
-  }
 
   double vented = 0.0, fluid_work = 0.0, total = 0.0;
   for (size_t v = 0; v < nv; ++v) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "engine/core/groups.hpp"
 #include "engine/core/table.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/schedule/system.hpp"
@@ -74,6 +75,9 @@ class FractureFlowSystem : public System {
   void closure_compliance(const kernels::CrackClosureNodes& closure,
                           const kernels::CrackClosureNodes& open_closure, double scale);
 
+  // Blocks of the parallel loops: fixed sizes, so every sum is the same on any thread count.
+  static constexpr size_t kTriangleGrain = 1024, kEntryGrain = 2048, kVertexGrain = 1024;
+
   Store& store_;
   FractureFlowSpec spec_;
   kernels::FluidEos eos_;
@@ -97,7 +101,10 @@ class FractureFlowSystem : public System {
   std::vector<int32_t> node_vertex_;    // local vertex of each entry
   std::vector<int32_t> corner_entry_;   // 6 per triangle
   std::vector<int32_t> entry_of_node_;  // -1 for a node on no wet triangle
-  std::vector<double> felt_;            // per entry: the pressure its node felt in the node pass
+  // The scatters of the geometry as gathers (engine/core/groups.hpp): per vertex its triangles' corners
+  // (3 t + c), per entry its faces' corners (6 t + k), per vertex its entries.
+  Groups vertex_corners_, entry_corners_, vertex_entries_;
+  std::vector<double> felt_;  // per entry: the pressure its node felt in the node pass
   // Per step, sized with the network.
   std::vector<double> tri_x_, aperture_, normal_, area_, volume_, compliance_, applied_, source_, fixed_;
   std::vector<double> area_vector_, open_area_vector_, opening_, now_, joining_;

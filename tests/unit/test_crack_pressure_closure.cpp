@@ -33,7 +33,12 @@ struct Piston {
     inv_mass.assign(6, 1.0 / m);
     area_vector.assign(18, 0.0);
     const double n[3] = {0, 0, 1};
-    kernels::add_pressure_area_vectors(corners, n, std::span<const double>(&area, 1), area_vector);
+    // Entry i is corner i of the one triangle.
+    const std::vector<int32_t> start{0, 1, 2, 3, 4, 5, 6};
+    const double opening[3] = {w0, w0, w0};
+    std::vector<double> open_area_vector(18);
+    kernels::gather_area_vectors(start, corners, n, std::span<const double>(&area, 1), opening, 0.0,
+                                 area_vector, open_area_vector, 0, 6);
   }
   kernels::CrackClosureNodes nodes() const { return {node, vertex, area_vector, inv_mass, free_mask}; }
   // Springs, the pressure p on the faces, and one damped leapfrog step.

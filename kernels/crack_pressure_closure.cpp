@@ -10,7 +10,8 @@ void gather_area_vectors(std::span<const int32_t> corner_start, std::span<const 
     double all[3] = {0.0, 0.0, 0.0}, open[3] = {0.0, 0.0, 0.0};
     for (int32_t k = corner_start[e]; k < corner_start[e + 1]; ++k) {
       const size_t t = size_t(corners[size_t(k)]) / 6, c = size_t(corners[size_t(k)]) % 6;
-      const bool side_a = c<3, is_open = opening[3 * t + c % 3]> floor;
+      const bool side_a = c < 3;
+      const bool is_open = opening[3 * t + c % 3] > floor;
       for (size_t d = 0; d < 3; ++d) {
         const double a = area[t] / 3.0 * normal[3 * t + d];
         all[d] = side_a ? all[d] + a : all[d] - a;

@@ -115,7 +115,7 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
     }
     const double p = s.pressure[v];
     const double storage =
-        eos_.density0 / eos_.bulk_modulus * volume_at(in, v, p) + eos_.density(p) * compliance_[v];
+        eos_.density0 / eos_.bulk_modulus * volume_at(in, v, p) + eos_.density(p) * compliance_at(in, v);
     values[diagonal_slot_[v]] = storage;
     rhs_[int(v)] = storage * p + s.mass[v] - eos_.density(p) * volume_at(in, v, p) + in.dt * in.source[v];
   }
@@ -173,16 +173,14 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
   return "";
 }
 
-void NetworkFlow::start_step(const NetworkFlowStepInput& in) {
-  compliance_.assign(in.compliance.begin(), in.compliance.end());
+void NetworkFlow::start_step() {
   stage_.assign(vertices_, uint8_t(Closing::open));
 }
 
-void NetworkFlow::set_stage(const NetworkFlowStepInput& in, size_t v, Closing stage) {
-  stage_[v] = uint8_t(stage);
-  compliance_[v] = stage == Closing::open           ? in.compliance[v]
-                   : stage == Closing::open_corners ? in.compliance_open[v]
-                                                    : 0.0;
+double NetworkFlow::stage_compliance(const NetworkFlowStepInput& in, size_t v, Closing stage) {
+  return stage == Closing::open           ? in.compliance[v]
+         : stage == Closing::open_corners ? in.compliance_open[v]
+                                          : 0.0;
 }
 
 // The walls' volume at p under a stage, and whether a vertex at p holds at least its floor under it: for a
@@ -193,7 +191,7 @@ void NetworkFlow::set_stage(const NetworkFlowStepInput& in, size_t v, Closing st
 bool NetworkFlow::stage_holds(const NetworkFlowStepInput& in, const NetworkFlowState& s, size_t v, double p,
                               Closing stage) const {
   if (stage == Closing::closed) return true;
-  const double c = stage == Closing::open ? in.compliance[v] : in.compliance_open[v];
+  const double c = stage_compliance(in, v, stage);
   const double floor = in.floor_volume[v];
   if (in.volume[v] + c * (p - in.applied[v]) < floor) return false;
   if (FlowRole(s.role[v]) == FlowRole::fixed) return true;
@@ -212,7 +210,7 @@ NetworkFlow::Closing NetworkFlow::stage_at(const NetworkFlowStepInput& in, const
 void NetworkFlow::close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
   if (in.floor_volume.empty()) return;
   for (size_t v = 0; v < vertices_; ++v)
-    if (FlowRole(s.role[v]) == FlowRole::fixed) set_stage(in, v, stage_at(in, s, v, in.fixed_pressure[v]));
+    if (FlowRole(s.role[v]) == FlowRole::fixed) stage_[v] = uint8_t(stage_at(in, s, v, in.fixed_pressure[v]));
 }
 
 void NetworkFlow::finish_step(const NetworkFlowStepInput& in, const NetworkFlowState& s) {
@@ -229,7 +227,7 @@ void NetworkFlow::finish_step(const NetworkFlowStepInput& in, const NetworkFlowS
 }
 
 std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& books) {
-  start_step(in);
+  start_step();
   if (viscosity_ <= 0.0) return zero_viscosity_step(in, s, books);
   close_fixed(in, s);
   transmissibilities(in);
@@ -255,7 +253,7 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
       if (in.floor_volume.empty()) continue;
       const Closing stage = stage_at(in, s, v, new_pressure_[v]);
       if (stage != Closing(stage_[v]) && (pass < kFreePasses || stage > Closing(stage_[v]))) {
-        set_stage(in, v, stage);
+        stage_[v] = uint8_t(stage);
         ++changed;
       }
     }
@@ -284,7 +282,7 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
 }
 
 std::string NetworkFlow::local_step(const NetworkFlowStepInput& in, NetworkFlowState& s) {
-  start_step(in);
+  start_step();
   close_fixed(in, s);
   return update_roles(in, s, false);
 }
@@ -314,15 +312,15 @@ std::string NetworkFlow::update_roles(const NetworkFlowStepInput& in, NetworkFlo
     // fluxes of that pressure, and the small difference rho(p) V(p) - m (second order in the step) enters
     // the next step's right-hand side, so it does not accumulate. Inverting the equation of state instead
     // would amplify the mass's rounding by K_f / (rho0 V) for a stiff fluid in a rigid crack. A vertex
-    // that has just filled takes the pressure of its mass.
-    // A vertex that has just filled (its walls opening under the fluid's arrival, whatever stage the
-    // solve's passes gave it while it held the lag pressure) takes all its corners' compliance.
+    // that has just filled takes the pressure of its mass, with all its corners' compliance (its walls
+    // open under the fluid's arrival, whatever stage the solve's passes gave it while it held the lag
+    // pressure).
     double p = lag_pressure_;
     if (role == FlowRole::wet && from_solve && FlowRole(s.role[v]) == FlowRole::wet) {
       p = new_pressure_[v];
     } else if (role == FlowRole::wet) {
-      set_stage(in, v, Closing::open);
-      p = kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], compliance_[v], in.applied[v]);
+      stage_[v] = uint8_t(Closing::open);
+      p = kernels::pressure_of_mass(eos_, s.mass[v], in.volume[v], in.compliance[v], in.applied[v]);
     }
     if (role == FlowRole::wet && p < lag_pressure_) {
       role = FlowRole::filling;

@@ -117,13 +117,13 @@ class NetworkFlow {
   // How far a vertex's walls may close within the step (NetworkFlowStepInput::floor_volume).
   enum class Closing : uint8_t { open = 0, open_corners = 1, closed = 2 };
   static constexpr size_t kFreePasses = 8;
-  void set_stage(const NetworkFlowStepInput& in, size_t v, Closing stage);
+  static double stage_compliance(const NetworkFlowStepInput& in, size_t v, Closing stage);
   bool stage_holds(const NetworkFlowStepInput& in, const NetworkFlowState& s, size_t v, double p,
                    Closing stage) const;
   Closing stage_at(const NetworkFlowStepInput& in, const NetworkFlowState& s, size_t v, double p) const;
   // A fixed vertex refills to its pressure: its volume there must not fall below its floor either.
   void close_fixed(const NetworkFlowStepInput& in, const NetworkFlowState& s);
-  void start_step(const NetworkFlowStepInput& in);
+  void start_step();
   void finish_step(const NetworkFlowStepInput& in, const NetworkFlowState& s);
 
   kernels::FluidEos eos_;
@@ -137,12 +137,14 @@ class NetworkFlow {
   std::vector<int32_t> component_;
   std::vector<double> part_mass_, part_v0_, part_compliance_;  // zero-viscosity mode, per component
   std::vector<int64_t> part_fixed_;
-  std::vector<double> compliance_;  // per vertex, this step: the input's, or the open one once closing
-  std::vector<uint8_t> stage_;      // per vertex, this step: Closing
+  std::vector<uint8_t> stage_;  // per vertex, this step: Closing
   std::vector<double> volume_used_, wall_pressure_;
+  double compliance_at(const NetworkFlowStepInput& in, size_t v) const {
+    return stage_compliance(in, v, Closing(stage_[v]));
+  }
   double volume_at(const NetworkFlowStepInput& in, size_t v, double p) const {
     return Closing(stage_[v]) == Closing::closed ? in.floor_volume[v]
-                                                 : in.volume[v] + compliance_[v] * (p - in.applied[v]);
+                                                 : in.volume[v] + compliance_at(in, v) * (p - in.applied[v]);
   }
   std::vector<int32_t> diagonal_slot_, edge_slot_;  // positions in the matrix's value array
   Eigen::SparseMatrix<double> matrix_;

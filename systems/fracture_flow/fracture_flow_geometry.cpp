@@ -46,7 +46,6 @@ void FractureFlowSystem::geometry() {
       floor_volume_[v] = floor;
       volume_[v] = volume;
       vertex_area_[v] = area;
-      weight_[v] = weight;
       for (size_t d = 0; d < 3; ++d) vertex_x_[3 * v + d] = weight > 0.0 ? mid[d] / weight : 0.0;
     }
   });

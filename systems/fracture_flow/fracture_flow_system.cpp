@@ -176,7 +176,7 @@ void FractureFlowSystem::network_changed() {
   const size_t nv = row_of_local_.size(), nt = joints_.size(), ne = node_.size();
   flow_.set_network(triangles_, nv);
   for (auto* v : {&volume_, &floor_volume_, &compliance_, &compliance_open_, &applied_, &source_, &fixed_,
-                  &pressure_, &previous_pressure_, &mass_, &wetting_, &exchanged_, &vertex_area_, &weight_})
+                  &pressure_, &previous_pressure_, &mass_, &wetting_, &exchanged_, &vertex_area_})
     v->assign(nv, 0.0);
   vertex_x_.assign(3 * nv, 0.0);
   role_.assign(nv, 0);

@@ -109,8 +109,8 @@ class FractureFlowSystem : public System {
   std::vector<double> tri_x_, aperture_, normal_, area_, volume_, compliance_, applied_, source_, fixed_;
   std::vector<double> area_vector_, open_area_vector_, opening_, now_, joining_;
   std::vector<double> floor_volume_, compliance_open_, previous_pressure_;
-  std::vector<double> vertex_area_, vertex_x_, weight_;  // per local vertex: area share, position
-  std::vector<double> entry_weight_, work_blocks_;       // per entry: closure weights; per block: work
+  std::vector<double> vertex_area_, vertex_x_;      // per local vertex: area share, position
+  std::vector<double> entry_weight_, work_blocks_;  // per entry: closure weights; per block: work
   std::vector<double> pressure_, mass_, wetting_, exchanged_;
   std::vector<uint8_t> role_;
   std::string problem_;

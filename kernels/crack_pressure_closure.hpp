@@ -23,8 +23,11 @@ struct CrackClosureNodes {
   std::span<const int32_t> node;        // 1 per entry: the solid node
   std::span<const int32_t> vertex;      // 1 per entry: the network vertex whose pressure acts on it
   std::span<const double> area_vector;  // 3 per entry: a [m^2]
-  std::span<const double> inv_mass;     // 1 per solid node
-  std::span<const uint8_t> free_mask;   // 3 per solid node: 0 for a held component (no correction)
+  // 1 per entry: its node's inverse mass, and 3 per entry: 0 for a component its node has held (no
+  // correction). Kept beside the entries rather than read through `node`: the solid's node arrays are
+  // large and the entries scattered over them, so each indirect load would be a cache miss.
+  std::span<const double> inv_mass;
+  std::span<const uint8_t> free_mask;
   // 3 per entry, or empty (then area_vector): the part of a over the faces whose corner at this node is
   // open beyond the aperture floor. A floored corner's volume does not follow its nodes, so only this part
   // turns their motion into volume: C = dt^2 g sum a_open . a / m.
@@ -58,7 +61,8 @@ void add_closure_compliance(const CrackClosureNodes& nodes, double dt, double da
                             std::span<double> compliance);
 
 // The correction for each entry's pressure change, from `felt` (what its node felt in the node pass) to
-// `now`: x += dt^2 g dp a / m, v += dt g dp a / m on the free components (x, v: 3 per solid node).
+// `now`: x += dt^2 g dp a / m, v += dt g dp a / m on the free components (x, v: 3 per solid node). The
+// nodes' rows are prefetched a few entries ahead (the entries are scattered over the node arrays).
 // Returns the work of the pressure forces that the correction adds to the node pass's trapezoid book:
 // dp a . dt (v + dv / 2) + felt a . dt dv / 2 per component (v the node pass's new velocity).
 double apply_closure(const CrackClosureNodes& nodes, double dt, double damping_factor,

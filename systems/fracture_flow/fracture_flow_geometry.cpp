@@ -16,11 +16,14 @@ namespace rift {
 // floored), areas and positions; the corner entries' pressure area vectors.
 void FractureFlowSystem::geometry() {
   const auto x = store_.table(solid::node_table).span<const double>("x");
-  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
   parallel_for(joints_.size(), kTriangleGrain, [&](size_t begin, size_t end) {
+    constexpr size_t ahead = kPrefetchAhead / 4;  // six rows per triangle
     for (size_t t = begin; t < end; ++t) {
+      if (t + ahead < end)
+        for (size_t c = 0; c < 6; ++c)
+          __builtin_prefetch(&x[3 * size_t(triangle_nodes_[6 * (t + ahead) + c])]);
       const double* corner[6];
-      for (size_t c = 0; c < 6; ++c) corner[c] = &x[3 * size_t(joint_nodes[6 * size_t(joints_[t]) + c])];
+      for (size_t c = 0; c < 6; ++c) corner[c] = &x[3 * size_t(triangle_nodes_[6 * t + c])];
       const kernels::CrackTriangle tri = kernels::crack_triangle(corner);
       area_[t] = tri.area;
       for (size_t d = 0; d < 3; ++d) normal_[3 * t + d] = tri.normal[d];

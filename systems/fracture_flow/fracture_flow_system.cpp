@@ -149,6 +149,7 @@ void FractureFlowSystem::add_triangle(size_t j) {
   const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
   const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
   joints_.push_back(int32_t(j));
+  triangle_nodes_.insert(triangle_nodes_.end(), &joint_nodes[6 * j], &joint_nodes[6 * j] + 6);
   for (int c = 0; c < 3; ++c) {
     const size_t row =
         size_t(row_of_mesh_vertex_[size_t(node_vertex[size_t(joint_nodes[6 * j + size_t(c)])])]);
@@ -191,6 +192,14 @@ void FractureFlowSystem::network_changed() {
   vertex_corners_.build(triangles_, nv);
   entry_corners_.build(corner_entry_, ne);
   vertex_entries_.build(node_vertex_, nv);
+  const Table& nodes = store_.table(solid::node_table);
+  const auto inv_mass = nodes.span<const double>("inv_mass");
+  const auto free = nodes.span<const uint8_t>("free");
+  for (size_t i = entry_inv_mass_.size(); i < ne; ++i) {
+    const size_t n = size_t(node_[i]);
+    entry_inv_mass_.push_back(inv_mass[n]);
+    entry_free_.insert(entry_free_.end(), &free[3 * n], &free[3 * n] + 3);
+  }
 }
 
 // At t = 0 the initial cracks hold fluid at the initial pressure, and the well is the crack vertex nearest
@@ -272,11 +281,14 @@ void FractureFlowSystem::fill_initial_cracks() {
 
 void FractureFlowSystem::restored() {
   joints_.clear();
+  triangle_nodes_.clear();
   triangles_.clear();
   node_.clear();
   node_vertex_.clear();
   corner_entry_.clear();
   felt_.clear();
+  entry_inv_mass_.clear();
+  entry_free_.clear();
   row_of_local_.clear();
   std::fill(local_of_row_.begin(), local_of_row_.end(), -1);
   std::fill(entry_of_node_.begin(), entry_of_node_.end(), -1);
@@ -340,11 +352,8 @@ void FractureFlowSystem::run(const StepContext& ctx) {
 
   // The closure's compliance, and the pressure the predicted volumes already felt (the compliance-weighted
   // mean of the corners': a corner that joined the network this step felt none).
-  const Table& nodes = store_.table(solid::node_table);
-  const auto inv_mass = nodes.span<const double>("inv_mass");
-  const auto free = nodes.span<const uint8_t>("free");
   const double damping_factor = 1.0 / (1.0 + 0.5 * mass_damping_(ctx.time) * ctx.dt);
-  const kernels::CrackClosureNodes closure{node_, node_vertex_, area_vector_, inv_mass, free};
+  const kernels::CrackClosureNodes closure{node_, node_vertex_, area_vector_, entry_inv_mass_, entry_free_};
   kernels::CrackClosureNodes open_closure = closure;
   open_closure.open_area_vector = open_area_vector_;
   closure_compliance(closure, open_closure, ctx.dt * ctx.dt * damping_factor);
@@ -412,6 +421,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
         const double work =
             kernels::apply_closure_block(closure, ctx.dt, damping_factor, felt_, now_, x, v, b, e);
         for (size_t i = b; i < e; ++i) {
+          if (i + kPrefetchAhead < e) __builtin_prefetch(&force[3 * size_t(node_[i + kPrefetchAhead])], 1);
           felt_[i] = pressure_[size_t(node_vertex_[i])];
           for (size_t d = 0; d < 3; ++d) force[3 * size_t(node_[i]) + d] = felt_[i] * area_vector_[3 * i + d];
         }

@@ -77,6 +77,9 @@ class FractureFlowSystem : public System {
 
   // Blocks of the parallel loops: fixed sizes, so every sum is the same on any thread count.
   static constexpr size_t kTriangleGrain = 1024, kEntryGrain = 2048, kVertexGrain = 1024;
+  // How many triangles or entries ahead their nodes' rows are prefetched: the wet nodes are scattered
+  // over the solid's node arrays, which the hardware prefetcher does not follow.
+  static constexpr size_t kPrefetchAhead = 16;
 
   Store& store_;
   FractureFlowSpec spec_;
@@ -96,11 +99,16 @@ class FractureFlowSystem : public System {
   std::vector<int32_t> joints_;        // 1 per triangle
   std::vector<int32_t> local_of_row_;  // -1 outside the network
   std::vector<int32_t> row_of_local_;
-  std::vector<int32_t> triangles_;      // 3 per triangle, local ids
-  std::vector<int32_t> node_;           // the wet corner nodes (entries), each once
-  std::vector<int32_t> node_vertex_;    // local vertex of each entry
-  std::vector<int32_t> corner_entry_;   // 6 per triangle
-  std::vector<int32_t> entry_of_node_;  // -1 for a node on no wet triangle
+  std::vector<int32_t> triangles_;       // 3 per triangle, local ids
+  std::vector<int32_t> triangle_nodes_;  // 6 per triangle: its joint's solid nodes
+  std::vector<int32_t> node_;            // the wet corner nodes (entries), each once
+  std::vector<int32_t> node_vertex_;     // local vertex of each entry
+  std::vector<int32_t> corner_entry_;    // 6 per triangle
+  std::vector<int32_t> entry_of_node_;   // -1 for a node on no wet triangle
+  // Per entry, its node's inverse mass and free components (fixed once the solid is set up), kept beside
+  // the entries so the closure does not reach into the node arrays for them.
+  std::vector<double> entry_inv_mass_;
+  std::vector<uint8_t> entry_free_;
   // The scatters of the geometry as gathers (engine/core/groups.hpp): per vertex its triangles' corners
   // (3 t + c), per entry its faces' corners (6 t + k), per vertex its entries.
   Groups vertex_corners_, entry_corners_, vertex_entries_;

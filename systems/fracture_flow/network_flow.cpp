@@ -92,6 +92,16 @@ void NetworkFlow::transmissibilities(const NetworkFlowStepInput& in) {
       std::count_if(transmissibility_.begin(), transmissibility_.end(), [](double T) { return T < 0.0; }));
 }
 
+// The fluid's density on each edge, the mean of its ends' at the step's old pressures: the same in every
+// pass of the step's active sets, so computed once (the equation of state divides).
+void NetworkFlow::edge_densities(const NetworkFlowState& s) {
+  vertex_density_.resize(vertices_);
+  for (size_t v = 0; v < vertices_; ++v) vertex_density_[v] = eos_.density(s.pressure[v]);
+  for (size_t e = 0; e < edge_count(); ++e)
+    edge_density_[e] =
+        0.5 * (vertex_density_[size_t(edge_v_[2 * e])] + vertex_density_[size_t(edge_v_[2 * e + 1])]);
+}
+
 // The P1 transmissibility, except at the front (an end dry or filling): there a negative one (an obtuse angle
 // opposite the edge) would pull fluid out of a vertex at the lag pressure, which holds none to give, so
 // it is taken as zero.
@@ -113,15 +123,14 @@ std::string NetworkFlow::solve_pressures(const NetworkFlowStepInput& in, const N
       rhs_[int(v)] = new_pressure_[v];
       continue;
     }
-    const double p = s.pressure[v];
+    const double p = s.pressure[v], rho = vertex_density_[v];
     const double storage =
-        eos_.density0 / eos_.bulk_modulus * volume_at(in, v, p) + eos_.density(p) * compliance_at(in, v);
+        eos_.density0 / eos_.bulk_modulus * volume_at(in, v, p) + rho * compliance_at(in, v);
     values[diagonal_slot_[v]] = storage;
-    rhs_[int(v)] = storage * p + s.mass[v] - eos_.density(p) * volume_at(in, v, p) + in.dt * in.source[v];
+    rhs_[int(v)] = storage * p + s.mass[v] - rho * volume_at(in, v, p) + in.dt * in.source[v];
   }
   for (size_t e = 0; e < edge_count(); ++e) {
     const size_t i = size_t(edge_v_[2 * e]), j = size_t(edge_v_[2 * e + 1]);
-    edge_density_[e] = 0.5 * (eos_.density(s.pressure[i]) + eos_.density(s.pressure[j]));
     const bool wi = FlowRole(s.role[i]) == FlowRole::wet, wj = FlowRole(s.role[j]) == FlowRole::wet;
     const double a = in.dt * edge_density_[e] * edge_transmissibility(e, s);
     if (wi) values[diagonal_slot_[i]] += a;
@@ -231,6 +240,7 @@ std::string NetworkFlow::step(const NetworkFlowStepInput& in, NetworkFlowState& 
   if (viscosity_ <= 0.0) return zero_viscosity_step(in, s, books);
   close_fixed(in, s);
   transmissibilities(in);
+  edge_densities(s);
   // Two active sets, solved again until neither changes:
   // - cavitation: a wet vertex whose pressure would fall below the lag pressure holds the lag pressure, so
   //   that no fluid is drawn from a vertex that cannot give it (one way: wet to filling);

@@ -107,6 +107,7 @@ class NetworkFlow {
  private:
   void transmissibilities(const NetworkFlowStepInput& in);
   double edge_transmissibility(size_t e, const NetworkFlowState& s) const;
+  void edge_densities(const NetworkFlowState& s);
   std::string solve_pressures(const NetworkFlowStepInput& in, const NetworkFlowState& s);
   std::string zero_viscosity_step(const NetworkFlowStepInput& in, NetworkFlowState& s, NetworkFlowBooks& b);
   // After the masses moved: fixed vertices refill to their pressure (booked as exchanged), wet ones take
@@ -132,7 +133,7 @@ class NetworkFlow {
   std::vector<int32_t> triangles_;
   std::vector<int32_t> edge_v_;         // 2 per edge, i < j, sorted
   std::vector<int32_t> triangle_edge_;  // 3 per triangle: the edge opposite each corner (-1: none)
-  std::vector<double> transmissibility_, edge_density_;
+  std::vector<double> transmissibility_, edge_density_, vertex_density_;
   std::vector<double> new_pressure_;
   std::vector<int32_t> component_;
   std::vector<double> part_mass_, part_v0_, part_compliance_;  // zero-viscosity mode, per component

@@ -172,7 +172,8 @@ def borehole(rift, size, tmp, penalty=None):
     r = list(csv.DictReader(open(os.path.join(out, "timeseries.csv"))))
     row = {"case": "borehole", "wall_cell_m": size, "penalty_over_E": penalty if penalty else 10}
     if done.returncode != 0:
-        row["stopped"] = f"at {float(r[-1]['time']) * 1e3:.3g} ms: " + done.stderr.strip().splitlines()[-1][:200]
+        last = (done.stderr.strip().splitlines() or [f"exit status {done.returncode}"])[-1]
+        row["stopped"] = f"at {float(r[-1]['time']) * 1e3:.3g} ms: " + last[:200]
     first = next((x for x in r if float(x["flow_crack_area"]) > 0), None)
     if first is not None:
         row["initiation"] = float(first["flow_well_pressure"]) / (3 * 3.0e6 - 5.0e6 + 2.0e6) - 1

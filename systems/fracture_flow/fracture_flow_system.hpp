@@ -99,12 +99,14 @@ class FractureFlowSystem : public System {
   std::vector<int32_t> joints_;        // 1 per triangle
   std::vector<int32_t> local_of_row_;  // -1 outside the network
   std::vector<int32_t> row_of_local_;
-  std::vector<int32_t> triangles_;       // 3 per triangle, local ids
-  std::vector<int32_t> triangle_nodes_;  // 6 per triangle: its joint's solid nodes
-  std::vector<int32_t> node_;            // the wet corner nodes (entries), each once
-  std::vector<int32_t> node_vertex_;     // local vertex of each entry
-  std::vector<int32_t> corner_entry_;    // 6 per triangle
-  std::vector<int32_t> entry_of_node_;   // -1 for a node on no wet triangle
+  std::vector<int32_t> triangles_;  // 3 per triangle, local ids
+  // 6 per triangle: its joint's solid nodes, copied in network order so that the per-step geometry reads
+  // them in a stream (the joint table's rows are scattered) and can prefetch their positions.
+  std::vector<int32_t> triangle_nodes_;
+  std::vector<int32_t> node_;           // the wet corner nodes (entries), each once
+  std::vector<int32_t> node_vertex_;    // local vertex of each entry
+  std::vector<int32_t> corner_entry_;   // 6 per triangle
+  std::vector<int32_t> entry_of_node_;  // -1 for a node on no wet triangle
   // Per entry, its node's inverse mass and free components (fixed once the solid is set up), kept beside
   // the entries so the closure does not reach into the node arrays for them.
   std::vector<double> entry_inv_mass_;

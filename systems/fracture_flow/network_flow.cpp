@@ -44,6 +44,7 @@ void NetworkFlow::set_network(std::span<const int32_t> triangles, size_t vertex_
                                       unique_keys.begin());
   transmissibility_.assign(unique_keys.size(), 0.0);
   edge_density_.assign(unique_keys.size(), 0.0);
+  vertex_density_.assign(vertex_count, 0.0);
   new_pressure_.assign(vertex_count, 0.0);
 
   // The matrix's pattern: the diagonal and every edge (upper triangle is enough for LDLT, but Eigen's
@@ -95,7 +96,6 @@ void NetworkFlow::transmissibilities(const NetworkFlowStepInput& in) {
 // The fluid's density on each edge, the mean of its ends' at the step's old pressures: the same in every
 // pass of the step's active sets, so computed once (the equation of state divides).
 void NetworkFlow::edge_densities(const NetworkFlowState& s) {
-  vertex_density_.resize(vertices_);
   for (size_t v = 0; v < vertices_; ++v) vertex_density_[v] = eos_.density(s.pressure[v]);
   for (size_t e = 0; e < edge_count(); ++e)
     edge_density_[e] =

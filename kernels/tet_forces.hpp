@@ -7,17 +7,16 @@
 // The elastic part is the Cauchy stress of W, so forces are exactly -dE/dx for eta = 0.
 // Nodal forces: f_a = -V0 P grad_X N_a with P = J sigma F^-T (= -V sigma grad_x N_a), f_0 = -(f_1+f_2+f_3).
 //
-// Initial (in-situ) stress, optional, per material: sigma = sigma_law(F, D) + sigma0. sigma0 is fixed in
-// space: it is NOT rotated with the body (a rigidly turned prestressed tet keeps sigma0 in the global frame;
-// its forces still sum to zero and have no moment, sigma0 being symmetric). The forces are -V sigma grad_x
-// N_a as above, so an undeformed tet carries -V0 sigma0 grad_X N_a, balanced inside a uniformly prestressed
-// body and at its boundary by tractions sigma0 n. The energy output adds the prestress energy
-//   V0 sigma0 : (F - I),
-// the potential of -V0 sigma0 grad_X N_a, i.e. of the prestress forces to first order only: they are
-// -V0 sigma0 cof(F) grad_X N_a, so the two differ by O(|sigma0| |F - I|) in force and O(|sigma0| |F - I|^2
-// V0) in energy. (A hydrostatic sigma0 = -p0 I has the exact potential -p0 (V - V0) = -p0 V0 (J - 1), which
-// agrees with the booked -p0 V0 tr(F - I) to that order; a deviatoric sigma0 fixed in space has no
-// potential at all: it does work around closed paths that rotate the body.)
+// Initial (in-situ) stress, optional, per material: a constant second Piola-Kirchhoff stress S0 = sigma0,
+// so the Cauchy stress is sigma = sigma_law(F, D) + F S0 F^T / J. An undeformed tet carries sigma0 exactly
+// (corner forces -V0 sigma0 grad_X N_a), balanced inside a uniformly prestressed body and at its boundary by
+// tractions sigma0 n. The prestress belongs to the material: a rigidly turned tet carries R sigma0 R^T, and
+// its forces -V0 F S0 grad_X N_a are exactly minus the gradient of the prestress energy the energy output
+// adds,
+//   V0 S0 : E,   E = (F^T F - I) / 2  (Green-Lagrange strain),
+// so the solid's energy balance holds however far the body turns and strains. (A Cauchy sigma0 held fixed in
+// space instead has no potential unless it is hydrostatic: it does work around closed paths that rotate the
+// body, and an energy balance that books V0 sigma0 : (F - I) for it drifts once fragments spin.)
 //
 // Viscous power, optional: P = eta (D:D) V >= 0 (V current volume) [W], the rate of work of the damping
 // stress eta D, for the engine to integrate as damping dissipation.
@@ -56,7 +55,7 @@ struct TetForceArgs {
   std::span<double> strain_energy;  // out, 1 per tet: W(F) V0 (+ prestress energy); may be empty (skipped)
   // Trailing optional members (default empty, so positional initialisers above stay valid):
   std::span<double> viscous_power = {};         // out, 1 per tet: eta (D:D) V [W]; empty = skipped
-  std::span<const double> initial_stress = {};  // 6 per material: sigma0, Cauchy xx yy zz xy yz zx [Pa];
+  std::span<const double> initial_stress = {};  // 6 per material: S0 = sigma0, xx yy zz xy yz zx [Pa];
                                                 // empty = none
   // The tet whose corner forces sit at corner_force[0]: tet t writes corner_force[12 (t - first) ...], so a
   // caller can have a range of tets write into a small scratch block (the fused node pass keeps them in L1).

@@ -172,11 +172,36 @@ template <class T>
   return w * c.volume0;
 }
 
-// V0 sigma0 : H = V0 sigma0 : (F - I), the first-order potential of the initial stress (tet_forces.hpp).
+// The initial stress is a constant second Piola-Kirchhoff stress S0 (tet_forces.hpp). Its Cauchy stress
+// F S0 F^T / J, added to s, formed through H so that an undeformed tet gets S0 exactly:
+//   F S0 F^T = S0 + M + M^T + M H^T,  M = H S0.
+template <class T>
+[[gnu::always_inline]] inline void add_prestress(const Kinematics<T>& k, const T s0[6], T s[6]) {
+  static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
+  const T S[3][3] = {{s0[0], s0[3], s0[5]}, {s0[3], s0[1], s0[4]}, {s0[5], s0[4], s0[2]}};
+  T M[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int m = 0; m < 3; ++m) M[i][m] = k.H[i][0] * S[0][m] + k.H[i][1] * S[1][m] + k.H[i][2] * S[2][m];
+  const T inv_j = splat<T>(1.0) / k.J;
+  for (int n = 0; n < 6; ++n) {
+    const int a = row[n], b = col[n];
+    const T push = M[a][b] + M[b][a] + (M[a][0] * k.H[b][0] + M[a][1] * k.H[b][1] + M[a][2] * k.H[b][2]);
+    s[n] = s[n] + (s0[n] + push) * inv_j;
+  }
+}
+
+// V0 S0 : E, E = (F^T F - I) / 2 = (H + H^T + H^T H) / 2: the exact potential of the prestress forces
+// -V0 F S0 grad_X N_a (tet_forces.hpp). S0 symmetric, so S0 : (H + H^T) / 2 = S0 : H.
 template <class T>
 [[gnu::always_inline]] inline T prestress_energy(const Kinematics<T>& k, const T s0[6], T volume0) {
-  const T e = s0[0] * k.H[0][0] + s0[1] * k.H[1][1] + s0[2] * k.H[2][2] + s0[3] * (k.H[0][1] + k.H[1][0]) +
-              s0[4] * (k.H[1][2] + k.H[2][1]) + s0[5] * (k.H[2][0] + k.H[0][2]);
+  static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
+  T e = splat<T>(0.0);
+  for (int n = 0; n < 6; ++n) {
+    const int a = row[n], b = col[n];
+    const T hth = k.H[0][a] * k.H[0][b] + k.H[1][a] * k.H[1][b] + k.H[2][a] * k.H[2][b];     // (H^T H)_ab
+    const T green = a == b ? k.H[a][a] + splat<T>(0.5) * hth : k.H[a][b] + k.H[b][a] + hth;  // E_ab (x2 off)
+    e = e + s0[n] * green;
+  }
   return e * volume0;
 }
 
@@ -198,8 +223,7 @@ template <class T>
   T Fdot[3][3], two_d[6];
   edge_gradient(ev, dm, Fdot);
   cauchy_stress(k, Fdot, c, r.stress, two_d);
-  if (want.sigma0)
-    for (int n = 0; n < 6; ++n) r.stress[n] = r.stress[n] + want.sigma0[n];
+  if (want.sigma0) add_prestress(k, want.sigma0, r.stress);
   corner_forces(k, r.stress, dm, c.volume0, r.force);
   if (want.energy) {
     r.energy = strain_energy(k, g, c);

@@ -174,6 +174,11 @@ def borehole(rift, size, tmp, penalty=None):
     if done.returncode != 0:
         last = (done.stderr.strip().splitlines() or [f"exit status {done.returncode}"])[-1]
         row["stopped"] = f"at {float(r[-1]['time']) * 1e3:.3g} ms: " + last[:200]
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    energy = summary.get("metrics", {}).get("solid", {}).get("energy", {})
+    if energy:
+        row["balance_error_J"] = energy["balance_error"]
+        row["external_work_J"] = energy["external_work"]
     first = next((x for x in r if float(x["flow_crack_area"]) > 0), None)
     if first is not None:
         row["initiation"] = float(first["flow_well_pressure"]) / (3 * 3.0e6 - 5.0e6 + 2.0e6) - 1

@@ -20,6 +20,9 @@ inline double splat<double>(double a) {
   return a;
 }
 
+// Voigt order xx yy zz xy yz zx: component n is the tensor's (voigt_row[n], voigt_col[n]).
+constexpr int voigt_row[6] = {0, 1, 2, 0, 1, 2}, voigt_col[6] = {0, 1, 2, 1, 2, 0};
+
 template <class T>
 struct Kinematics {
   T H[3][3];    // displacement gradient F - I
@@ -122,7 +125,6 @@ template <class T>
 template <class T>
 [[gnu::always_inline]] inline void cauchy_stress(const Kinematics<T>& k, const T Fdot[3][3],
                                                  const Constants<T>& c, T s[6], T two_d[6]) {
-  static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
   const T inv_j = splat<T>(1.0) / k.J;
   const T shear = c.mu * inv_j;
   const T volumetric = splat<T>(0.5) * c.lambda * k.j * (splat<T>(2.0) + k.j) * inv_j;
@@ -131,7 +133,7 @@ template <class T>
     return Fdot[a][0] * k.cof[b][0] + Fdot[a][1] * k.cof[b][1] + Fdot[a][2] * k.cof[b][2];
   };
   for (int n = 0; n < 6; ++n) {
-    const int a = row[n], b = col[n];
+    const int a = voigt_row[n], b = voigt_col[n];
     const T bm =
         k.H[a][b] + k.H[b][a] + (k.H[a][0] * k.H[b][0] + k.H[a][1] * k.H[b][1] + k.H[a][2] * k.H[b][2]);
     two_d[n] = l(a, b) + l(b, a);  // 2 J D_ab
@@ -173,18 +175,17 @@ template <class T>
 }
 
 // The initial stress is a constant second Piola-Kirchhoff stress S0 (tet_forces.hpp). Its Cauchy stress
-// F S0 F^T / J, added to s, formed through H so that an undeformed tet gets S0 exactly:
+// F S0 F^T / J, added to s, formed through H so that H = 0 gives S0 exactly:
 //   F S0 F^T = S0 + M + M^T + M H^T,  M = H S0.
 template <class T>
 [[gnu::always_inline]] inline void add_prestress(const Kinematics<T>& k, const T s0[6], T s[6]) {
-  static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
   const T S[3][3] = {{s0[0], s0[3], s0[5]}, {s0[3], s0[1], s0[4]}, {s0[5], s0[4], s0[2]}};
   T M[3][3];
   for (int i = 0; i < 3; ++i)
     for (int m = 0; m < 3; ++m) M[i][m] = k.H[i][0] * S[0][m] + k.H[i][1] * S[1][m] + k.H[i][2] * S[2][m];
   const T inv_j = splat<T>(1.0) / k.J;
   for (int n = 0; n < 6; ++n) {
-    const int a = row[n], b = col[n];
+    const int a = voigt_row[n], b = voigt_col[n];
     const T push = M[a][b] + M[b][a] + (M[a][0] * k.H[b][0] + M[a][1] * k.H[b][1] + M[a][2] * k.H[b][2]);
     s[n] = s[n] + (s0[n] + push) * inv_j;
   }
@@ -194,10 +195,9 @@ template <class T>
 // -V0 F S0 grad_X N_a (tet_forces.hpp). S0 symmetric, so S0 : (H + H^T) / 2 = S0 : H.
 template <class T>
 [[gnu::always_inline]] inline T prestress_energy(const Kinematics<T>& k, const T s0[6], T volume0) {
-  static constexpr int row[6] = {0, 1, 2, 0, 1, 2}, col[6] = {0, 1, 2, 1, 2, 0};
   T e = splat<T>(0.0);
   for (int n = 0; n < 6; ++n) {
-    const int a = row[n], b = col[n];
+    const int a = voigt_row[n], b = voigt_col[n];
     const T hth = k.H[0][a] * k.H[0][b] + k.H[1][a] * k.H[1][b] + k.H[2][a] * k.H[2][b];     // (H^T H)_ab
     const T green = a == b ? k.H[a][a] + splat<T>(0.5) * hth : k.H[a][b] + k.H[b][a] + hth;  // E_ab (x2 off)
     e = e + s0[n] * green;

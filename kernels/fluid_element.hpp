@@ -93,9 +93,13 @@ void scalar_laplacian_matrix(const ScalarLaplacianArgs& a, size_t begin, size_t 
 void scalar_laplacian_fix_rows(const ScalarLaplacianArgs& a);
 
 // Right-hand side of the pressure-correction equation (docs/fluid.md):
-//   rhs_q = -sum_t [ (V/4) div u*_t  +  tau_p[t] V g_q . (grad p_t - xibar_t) ]
+//   rhs_q = -sum_t [ w_t (V/4) div u*_t  +  tau_p[t] V g_q . (grad p_t - xibar_t)
+//                    + h_t V g_q . (grad p_t - fbar_t) ]
 // with div u*_t and grad p_t the (constant) cell divergence and pressure gradient, xibar_t the mean of
-// the nodal projected pressure gradient xi (3 per node). Accumulated into rhs.
+// the nodal projected pressure gradient xi (3 per node), w_t the continuity's weight (1 when div_weight
+// is empty), h_t the coefficient of a Darcy-like flux that takes its place (0 when relative_flux is empty)
+// and fbar_t the mean of the nodal body force (3 per node; zero when body_force is empty). Accumulated
+// into rhs.
 void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                         std::span<const double> grad, std::span<const double> u, std::span<const double> p,
                         std::span<const double> xi, std::span<const double> tau_p, std::span<double> rhs);
@@ -103,6 +107,8 @@ void fluid_pressure_rhs(std::span<const int32_t> tet_nodes, std::span<const doub
 struct FluidPressureRhsArgs {
   std::span<const int32_t> tet_nodes;
   std::span<const double> volume, grad, u, p, xi, tau_p;
+  std::span<const double> div_weight = {}, relative_flux = {};  // per tet; empty: 1 and 0
+  std::span<const double> body_force = {};                      // 3 per node; empty: 0
 };
 void fluid_pressure_rhs(const FluidPressureRhsArgs& a, std::span<double> rhs, size_t begin, size_t end);
 

@@ -87,6 +87,7 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
       static_cast<int>(sec.integer("pressure_max_iterations", IntRule{1, 100000}, 200));
   f.body_force = sec.vec3("body_force", any_real("N/m^3"), std::array<double, 3>{});
   f.initial_velocity = sec.vec3("initial_velocity", any_real("m/s"), std::array<double, 3>{});
+  f.initial_pressure = sec.real("initial_pressure", any_real("Pa"), 0.0);
   auto boundaries = sec.section_list("boundaries", 1);
   for (auto& b : boundaries) f.boundaries.push_back(read_boundary(b));
   // One condition per surface: two on one surface would silently let the later one win.
@@ -137,6 +138,8 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   c.beta = sec.real("beta", positive(""), 1.0);
   c.added_mass = sec.real("added_mass", non_negative(""), 0.0);
   c.dilatation = sec.boolean("dilatation", false);
+  static constexpr std::array<std::string_view, 2> kContinuity{"mixture", "fluid"};
+  c.continuity = static_cast<FluidSolidSpec::Continuity>(sec.choice("continuity", kContinuity, 0));
   static constexpr std::array<std::string_view, 2> kCouplings{"sequential", "concurrent"};
   c.coupling = static_cast<FluidSolidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
   sec.finish();

@@ -286,6 +286,7 @@ void emit_fluid(Lines& o, const FluidSpec& f) {
   o.line(1, "pressure_max_iterations", std::to_string(f.pressure_max_iterations));
   o.line(1, "body_force", vec3(f.body_force));
   o.line(1, "initial_velocity", vec3(f.initial_velocity));
+  o.line(1, "initial_pressure", yaml_real(f.initial_pressure));
   o.line(1, "boundaries");
   for (const auto& b : f.boundaries) {
     o.item(2, "surface", quoted(b.surface));
@@ -318,6 +319,7 @@ void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(1, "beta", yaml_real(c.beta));
   o.line(1, "added_mass", yaml_real(c.added_mass));
   o.line(1, "dilatation", c.dilatation ? "true" : "false");
+  o.line(1, "continuity", c.continuity == FluidSolidSpec::Continuity::mixture ? "mixture" : "fluid");
   o.line(1, "coupling", c.coupling == FluidSolidSpec::Coupling::sequential ? "sequential" : "concurrent");
 }
 

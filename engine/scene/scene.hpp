@@ -263,6 +263,7 @@ struct FluidSpec {
   int pressure_max_iterations = 200;
   std::array<double, 3> body_force{};        // [N/m^3]
   std::array<double, 3> initial_velocity{};  // [m/s], then the boundary values on Dirichlet nodes
+  double initial_pressure = 0.0;             // [Pa], uniform at t = 0
   std::vector<FluidBoundarySpec> boundaries;
   // Compare the steady centre lines with Ghia et al. (1982) Re = 100 (a unit-square cavity, lid speed 1):
   // summary metrics.fluid.ghia_max_error.
@@ -289,6 +290,12 @@ struct FluidSolidSpec {
   // docs/coupling.md); off: div u = 0 everywhere. Off by default: with the lagged exchange it made the
   // wedge scene's coupling unstable (docs/speed-accuracy.md).
   bool dilatation = false;
+  // Where the fluid's continuity holds. mixture: div u = s in every cell, also those the solid fills (the
+  // fictitious fluid inside the solid must follow the solid's volume changes). fluid: weighted by the
+  // fluid's fraction 1 - alpha of each cell, the pressure inside the solid being the harmonic extension
+  // of the fluid's (docs/coupling.md).
+  enum class Continuity { mixture, fluid };
+  Continuity continuity = Continuity::mixture;
   // When the fluid step runs (docs/coupling.md). sequential: on the last solid step of each window, from
   // the solid at the window's end. concurrent: from the solid at the window's start, as a task beside the
   // window's solid sub-steps (the fluid sees the solid one window earlier; the force lag is the same).

@@ -1,5 +1,6 @@
 #include "systems/coupling/fluid_solid_exchange.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -195,6 +196,11 @@ void SolidToFluidSystem::restore_solver() {
   if (settings_.dilatation) {
     const auto dilatation = ft.span<double>("solid_dilatation");
     std::copy(dilatation.begin(), dilatation.end(), solver_.dilatation().begin());
+  }
+  if (settings_.fluid_continuity) {
+    const auto fraction = ft.span<double>("solid_fraction");
+    const auto weight = solver_.continuity_weight();
+    for (size_t k = 0; k < fraction.size(); ++k) weight[k] = std::clamp(1.0 - fraction[k], 0.0, 1.0);
   }
   solver_.absorption_changed();
 }

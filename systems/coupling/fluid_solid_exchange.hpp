@@ -25,6 +25,7 @@ struct ExchangeSettings {
   std::array<double, 3> body_force{};  // fluid body force [N/m^3]
   double added_mass = 0.0;             // c_a (FluidSolidSpec::added_mass)
   bool dilatation = false;             // FluidSolidSpec::dilatation: the continuity source s_K
+  bool fluid_continuity = false;       // FluidSolidSpec::Continuity::fluid: continuity weighted by 1 - alpha
   bool volume_force = true;            // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
   int oscillation_lag = 1;  // fluid steps between a solid state and the force answering it (2: concurrent)

@@ -28,6 +28,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.body_force = fluid.spec().body_force;
   settings_.added_mass = spec.added_mass;
   settings_.dilatation = spec.dilatation;
+  settings_.fluid_continuity = spec.continuity == FluidSolidSpec::Continuity::fluid;
   settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;
@@ -252,6 +253,25 @@ void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>
   row.emplace_back("fluid_solid_solid_volume", state.span<double>("solid_volume")[0]);
   row.emplace_back("fluid_solid_cut_cells", state.span<double>("cut_cells")[0]);
   row.emplace_back("fluid_solid_pairs", state.span<double>("pairs")[0]);
+  // The pressure range over the nodes of the cells the fluid fills (solid fraction below 0.5): the real
+  // fluid's, without the fictitious fluid inside the solid.
+  const Table& ft = store_.table(fluid::tet_table);
+  const auto fraction = ft.span<double>("solid_fraction");
+  const auto tets = ft.span<int32_t>("nodes");
+  const auto p = store_.table(fluid::node_table).span<double>("pressure");
+  double pmin = 0.0, pmax = 0.0;
+  bool any = false;
+  for (size_t k = 0; k < fraction.size(); ++k) {
+    if (!(fraction[k] < 0.5)) continue;
+    for (int a = 0; a < 4; ++a) {
+      const double q = p[static_cast<size_t>(tets[4 * k + a])];
+      pmin = any ? std::min(pmin, q) : q;
+      pmax = any ? std::max(pmax, q) : q;
+      any = true;
+    }
+  }
+  row.emplace_back("fluid_region_pressure_min", pmin);
+  row.emplace_back("fluid_region_pressure_max", pmax);
 }
 
 void FluidSolidModel::summarize(nlohmann::json& summary) const {

@@ -99,6 +99,7 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
   build_solver(mesh);
   const auto v0 = spec.initial_velocity;
   solver_->set_velocity([v0](const fluid::Vec3&, double) { return v0; });
+  solver_->set_pressure(spec.initial_pressure);
   Table& nodes = store_.add_table(fluid::node_table);
   nodes.add<double>("x", 3);
   nodes.add<double>("velocity", 3);
@@ -120,6 +121,8 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
   store_mesh(mesh);
   const auto u = solver_->velocity();
   std::copy(u.begin(), u.end(), nodes.span<double>("velocity").begin());
+  const auto p = solver_->pressure();
+  std::copy(p.begin(), p.end(), nodes.span<double>("pressure").begin());
   step_ = std::make_unique<FluidStepSystem>(store_, *solver_, substeps_, std::move(coupling_reads));
 }
 

@@ -118,6 +118,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   target_.assign(3 * nt, 0.0);
   source_.assign(3 * nt, 0.0);
   dilatation_.assign(nt, 0.0);
+  continuity_weight_.assign(nt, 1.0);
   for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
 
   momentum_ = p1_pattern(static_cast<int32_t>(nn), tet_nodes_);
@@ -207,6 +208,16 @@ void FluidSolver::update_cell_coefficients() {
     c_cell_[t] = 1.0 / (rdt + sigma_[t]);
     pcoef_[t] = c_cell_[t] + tau_p_[t];
   }
+  // Where the continuity is weighted down, the divergence of the flux c (f - grad p) of the fluid
+  // relative to the solid (the momentum balance sigma (u - u_s) = f - grad p, with rho/dt) takes the
+  // rest: (1 - w) c. The pressure there is the extension of the fluid's that lets no fluid through the
+  // solid relative to it; hydrostatics stays exact.
+  weighted_ = false;
+  for (size_t t = 0; t < nt && !weighted_; ++t) weighted_ = continuity_weight_[t] != 1.0;
+  if (weighted_) {
+    relative_flux_.resize(nt);
+    for (size_t t = 0; t < nt; ++t) relative_flux_[t] = (1.0 - continuity_weight_[t]) * c_cell_[t];
+  }
   // Diagonal of the steady Schur complement M_L / mu + sum_t tau_p K^t (the viscous preconditioner part).
   for (size_t n = 0; n < node_volume_.size(); ++n) visc_diag_[n] = s.mu > 0.0 ? node_volume_[n] / s.mu : 0.0;
   for (size_t t = 0; t < nt; ++t) {
@@ -268,7 +279,7 @@ int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> 
 void FluidSolver::add_dilatation(std::span<double> residual) const {
   for (size_t t = 0; t < dilatation_.size(); ++t) {
     if (dilatation_[t] == 0.0) continue;
-    const double share = 0.25 * volume_[t] * dilatation_[t];
+    const double share = 0.25 * volume_[t] * continuity_weight_[t] * dilatation_[t];
     for (int q = 0; q < 4; ++q) residual[static_cast<size_t>(tet_nodes_[4 * t + q])] += share;
   }
 }
@@ -288,7 +299,8 @@ void FluidSolver::schur_apply(std::span<const double> v, std::span<double> sv, S
   // stabilisation tau_p (grad q, grad p - xi(p)) is implicit (grad_v_ holds int N grad v * -1 here).
   for (size_t n = 0; n < nn; ++n)
     for (int d = 0; d < 3; ++d) xi_v_[3 * n + d] = -grad_v_[3 * n + d] / node_volume_[n];
-  assembly_.pressure_rhs({tet_nodes_, volume_, grad_, u_v_, v, xi_v_, tau_p_}, sv);
+  assembly_.pressure_rhs(
+      {tet_nodes_, volume_, grad_, u_v_, v, xi_v_, tau_p_, continuity_weights(), relative_flux()}, sv);
   for (size_t n = 0; n < nn; ++n) sv[n] = phi_fixed_[n] && !closed_ ? v[n] : -sv[n];
 }
 
@@ -480,7 +492,10 @@ FluidStepReport FluidSolver::step() {
     build_component_matrices();
     rep.velocity_iterations += solve_momentum(rhs_, u_star_, false, s.velocity_forcing);
     // 2. Pressure: residual -R(u*, p^k) of the stabilised continuity equation.
-    assembly_.pressure_rhs({tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_}, cont_res_);
+    assembly_.pressure_rhs(
+        {tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_, continuity_weights(), relative_flux(),
+         body_force_fn_ ? std::span<const double>(body_force_) : std::span<const double>{}},
+        cont_res_);
     add_dilatation(cont_res_);
     if (s.coupling == PressureCoupling::schur_gmres) {
       double sum = 0.0;

@@ -14,6 +14,7 @@
 //      projection: one correction -div((c + tau_p) grad phi) = -R, u = u* - c grad phi (lumped),
 //      p += phi; its fixed point is the same, reached more slowly when mu dt / (rho h^2) >> 1.
 // Boundary conditions live on the mesh's named surfaces.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -121,11 +122,20 @@ class FluidSolver {
   // The divergence the continuity equation allows per tet, div u = s [1/s] (the immersed solid's rate of
   // volume change per unit volume; zero by default).
   std::span<double> dilatation() { return dilatation_; }
+  // The weight of the continuity equation per tet, w in [0, 1] (1 by default). Where w < 1 the equation
+  // is w div u = w s, and the divergence of (1 - w) c (f - grad p) (c = 1 / (rho/dt + sigma): the flux of
+  // the fluid relative to the target) takes the rest of the row. With w = 1 - alpha (alpha: the fraction
+  // of a cell an immersed solid fills) continuity holds where the fluid is, and inside the solid the
+  // pressure is the extension of the fluid's that lets no fluid through the solid, instead of the answer
+  // to the solid's volume changes (docs/coupling.md). Call absorption_changed() after writing it.
+  std::span<double> continuity_weight() { return continuity_weight_; }
   void absorption_changed() { pressure_matrix_stale_ = true; }
   // Body force per unit volume f(x, t) [N/m^3], evaluated at the nodes (theta-weighted in time).
   void set_body_force(VectorField f) { body_force_fn_ = std::move(f); }
 
   void set_velocity(const VectorField& u0);  // at the current time; also sets u on Dirichlet nodes
+  // A uniform pressure p^n (the first Picard iterate).
+  void set_pressure(double p0) { std::fill(p_.begin(), p_.end(), p0); }
   void set_time(double t) { time_ = t; }
 
   FluidStepReport step();
@@ -169,6 +179,13 @@ class FluidSolver {
   void apply_velocity_bc(double t);
   void assemble_pressure_matrix();
   double velocity_scale() const;  // for the Picard test and the Schur floor
+  // The continuity's weights for the element loops: empty while every weight is 1 (the plain equation).
+  std::span<const double> continuity_weights() const {
+    return weighted_ ? std::span<const double>(continuity_weight_) : std::span<const double>{};
+  }
+  std::span<const double> relative_flux() const {
+    return weighted_ ? std::span<const double>(relative_flux_) : std::span<const double>{};
+  }
   void update_cell_coefficients();
 
   FluidSettings settings_;
@@ -187,9 +204,11 @@ class FluidSolver {
   std::vector<double> phi_value_;
   // Fields.
   std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
-  std::vector<double> sigma_, target_, source_, dilatation_;
+  std::vector<double> sigma_, target_, source_, dilatation_, continuity_weight_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
+  bool weighted_ = false;              // some continuity weight is below 1
+  std::vector<double> relative_flux_;  // (1 - w) c per tet, while weighted_
   // Linear algebra.
   CsrMatrix momentum_, pressure_mat_;
   std::array<CsrMatrix, 3> comp_;         // momentum with the Dirichlet rows of each component

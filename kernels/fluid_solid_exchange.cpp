@@ -129,11 +129,13 @@ void barycentric(const double c[4][3], const double* q, double lambda[4]) {
 
 size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const int32_t> fluid_tet_nodes,
                                 std::span<const double> field, std::span<const double> points,
-                                std::span<const CouplingPair> candidates, std::span<double> out) {
+                                std::span<const CouplingPair> candidates, std::span<double> out,
+                                std::span<int32_t> cell) {
   const size_t n = out.size();
   size_t outside = 0, p = 0;
   for (size_t k = 0; k < n; ++k) {
     double best = -1e300, value = 0.0;
+    int32_t winner = -1;
     for (; p < candidates.size() && static_cast<size_t>(candidates[p].fluid) == k; ++p) {
       const size_t t = static_cast<size_t>(candidates[p].solid);
       double c[4][3], lambda[4];
@@ -142,6 +144,7 @@ size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const
       const double low = std::min(std::min(lambda[0], lambda[1]), std::min(lambda[2], lambda[3]));
       if (low > best) {
         best = low;
+        winner = static_cast<int32_t>(t);
         value = 0.0;
         for (int a = 0; a < 4; ++a)
           value += lambda[a] * field[static_cast<size_t>(fluid_tet_nodes[4 * t + a])];
@@ -149,6 +152,7 @@ size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const
     }
     const bool found = best >= -1e-9;
     out[k] = found ? value : 0.0;
+    if (!cell.empty()) cell[k] = found ? winner : -1;
     outside += found ? 0 : 1;
   }
   return outside;

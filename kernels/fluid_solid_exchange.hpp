@@ -109,9 +109,11 @@ void gather_to_solid_nodes(std::span<const CouplingPair> pairs, std::span<const 
 // points as its first side (zero-size boxes) and the fluid tets as its second. Per point the candidate
 // whose smallest barycentric coordinate is largest wins (the containing tet; the first in id order on a
 // shared face), out[k] = sum_a lambda_a field[n_a]. A point with no candidate, or outside every
-// candidate by more than 1e-9 in barycentric terms, gets 0; their number is returned.
+// candidate by more than 1e-9 in barycentric terms, gets 0; their number is returned. cell (optional, 1
+// per point): the winning tet, -1 for a point outside.
 size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const int32_t> fluid_tet_nodes,
                                 std::span<const double> field, std::span<const double> points,
-                                std::span<const CouplingPair> candidates, std::span<double> out);
+                                std::span<const CouplingPair> candidates, std::span<double> out,
+                                std::span<int32_t> cell = {});
 
 }  // namespace rift::kernels

@@ -77,7 +77,10 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
     for (const auto& bc : scene.solid->boundaries)
       wetted = wetted || bc.kind == SolidBoundarySpec::Kind::fluid_pressure;
     const bool by_faces = scene.fluid_solid->force == FluidSolidSpec::Force::wetted_faces;
-    if (wetted != by_faces)
+    // With a network inlet the fluid reaches the rock through the cracks' network: wetted faces need not
+    // be named.
+    const bool through_network = scene.fluid_solid->network_inlet.has_value();
+    if (wetted != by_faces && !(by_faces && through_network))
       doc.error(
           has_coupling ? "fluid_solid" : "solid",
           by_faces ? "fluid_solid.force: wetted_faces with at least one solid boundary of type fluid_pressure"
@@ -95,7 +98,8 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
   const bool has_fracture_flow = doc.has("fracture_flow");
   MapReader fracture_flow = doc.section("fracture_flow", false);
   if (has_fracture_flow) {
-    scene.fracture_flow = read_fracture_flow_section(fracture_flow);
+    scene.fracture_flow = read_fracture_flow_section(
+        fracture_flow, scene.fluid_solid && scene.fluid_solid->network_inlet.has_value());
     if (!has_solid || !scene.solid->fracture)
       doc.error("fracture_flow",
                 "a fracture_flow section only with a solid.fracture section (the cracks it fills)",
@@ -106,6 +110,14 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
                 "limit of this flow (no viscosity, no compressibility), and both would press the cracks",
                 "both are given; remove solid.fracture.crack_pressure");
   }
+  if (scene.fluid_solid && scene.fluid_solid->network_inlet && !has_fracture_flow)
+    doc.error("fluid_solid",
+              "fluid_solid.network_inlet only with a fracture_flow section (the network it feeds)",
+              "no fracture_flow section");
+  else if (scene.fluid_solid && scene.fluid_solid->network_inlet &&
+           scene.fluid_solid->coupling == FluidSolidSpec::Coupling::concurrent)
+    doc.error("fluid_solid", "fluid_solid.network_inlet with coupling: sequential",
+              "coupling: concurrent (its fluid step would take the network's sink a window late)");
   MapReader output = doc.section("output", false);
   scene.output = read_output_section(output);
   MapReader checkpoint = doc.section("checkpoint", false);

@@ -140,6 +140,10 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   c.dilatation = sec.boolean("dilatation", false);
   static constexpr std::array<std::string_view, 2> kContinuity{"mixture", "fluid"};
   c.continuity = static_cast<FluidSolidSpec::Continuity>(sec.choice("continuity", kContinuity, 0));
+  if (sec.has("network_inlet"))
+    c.network_inlet = sec.vec3("network_inlet", any_real("m"), std::nullopt);
+  else
+    sec.declare("network_inlet");
   static constexpr std::array<std::string_view, 2> kCouplings{"sequential", "concurrent"};
   c.coupling = static_cast<FluidSolidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
   sec.finish();

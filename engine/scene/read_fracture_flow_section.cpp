@@ -6,7 +6,7 @@
 
 namespace rift {
 
-FractureFlowSpec read_fracture_flow_section(MapReader& f) {
+FractureFlowSpec read_fracture_flow_section(MapReader& f, bool pressure_from_fluid) {
   FractureFlowSpec spec;
   spec.density = f.real("density", positive("kg/m^3"), 1000.0);
   spec.viscosity = f.real("viscosity", non_negative("Pa s"), 1.0e-3);
@@ -33,7 +33,13 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f) {
     spec.pressure = well.time_function("pressure", "Pa", std::nullopt);
   else
     well.declare("pressure");
-  if (by_rate == by_pressure)
+  spec.pressure_from_fluid = pressure_from_fluid;
+  if (pressure_from_fluid && (by_rate || by_pressure))
+    well.error(by_rate ? "rate" : "pressure",
+               "neither rate nor pressure with fluid_solid.network_inlet (the surrounding fluid sets the "
+               "well's pressure)",
+               by_rate ? "a rate" : "a pressure");
+  else if (!pressure_from_fluid && by_rate == by_pressure)
     well.error(by_rate ? "pressure" : "rate",
                "one of rate (m^3/s) and pressure (Pa): the well is driven by one",
                by_rate ? "both are given" : "neither is given");

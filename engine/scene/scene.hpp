@@ -296,6 +296,11 @@ struct FluidSolidSpec {
   // of the fluid's (docs/coupling.md).
   enum class Continuity { mixture, fluid };
   Continuity continuity = Continuity::mixture;
+  // A point in the fluid [m] (the notch's mouth): the fracture-flow network's well takes the fluid's
+  // pressure there after every fluid step, and what the network takes in leaves the fluid in the cell
+  // that holds it, as a sink (docs/coupling.md "The fluid feeds the cracks"). Needs fracture_flow, whose
+  // injection then gives neither rate nor pressure.
+  std::optional<std::array<double, 3>> network_inlet;
   // When the fluid step runs (docs/coupling.md). sequential: on the last solid step of each window, from
   // the solid at the window's end. concurrent: from the solid at the window's start, as a task beside the
   // window's solid sub-steps (the fluid sees the solid one window earlier; the force lag is the same).
@@ -328,6 +333,7 @@ struct FractureFlowSpec {
   std::vector<std::string> well_surfaces;
   std::optional<TimeFunction> rate;      // injected volume rate at rho0 [m^3/s] (one of rate, pressure)
   std::optional<TimeFunction> pressure;  // well pressure [Pa]
+  bool pressure_from_fluid = false;      // the well's pressure is the surrounding fluid's (network_inlet)
   double well_volume = 0.0;              // [m^3]: the borehole and line the injection fills first
   double well_compliance = 0.0;          // [m^3/Pa]: the line's and pump's compliance
   // Crack vertices on the named surfaces (all of the mesh's when empty) hold this pressure and take what

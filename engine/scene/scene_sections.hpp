@@ -21,8 +21,9 @@ FractureMaterialSpec read_fracture_material(MapReader& sec, double young);
 FractureSpec read_fracture_section(MapReader& sec);
 InitialStressSpec read_initial_stress_section(MapReader& sec);
 ContactSpec read_contact_section(MapReader& sec);
-FluidSolidSpec read_fluid_solid_section(MapReader& sec);      // read_fluid_section.cpp
-FractureFlowSpec read_fracture_flow_section(MapReader& sec);  // read_fracture_flow_section.cpp
+FluidSolidSpec read_fluid_solid_section(MapReader& sec);  // read_fluid_section.cpp
+// pressure_from_fluid: fluid_solid.network_inlet is given, and the well takes neither rate nor pressure.
+FractureFlowSpec read_fracture_flow_section(MapReader& sec, bool pressure_from_fluid);
 OutputSpec read_output_section(MapReader& sec);
 CheckpointSpec read_checkpoint_section(MapReader& sec);
 ReferenceMetricSpec read_reference_metric(MapReader& sec);

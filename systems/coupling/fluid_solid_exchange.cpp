@@ -1,15 +1,19 @@
 #include "systems/coupling/fluid_solid_exchange.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
+#include "engine/core/error.hpp"
 #include "engine/schedule/parallel.hpp"
 #include "kernels/contact_broad_phase.hpp"
 #include "kernels/fluid_solid_exchange.hpp"
 #include "kernels/surface_load.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
 #include "systems/fluid/fluid_tables.hpp"
+#include "systems/fracture_flow/fracture_flow_tables.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -78,6 +82,11 @@ Access SolidToFluidSystem::access() const {
     for (const std::string& c :
          {col(solid::tet_table, "volume_at_exchange"), fluid::col(F, "solid_dilatation")})
       a.writes.push_back(c);
+  if (settings_.network_inlet) {
+    a.reads.push_back(col(fracture_flow::books_table, "injected"));
+    a.writes.push_back(col(coupling::state_table, "inlet_injected"));
+    a.writes.push_back(col(coupling::state_table, "inlet_sink_mass"));
+  }
   return a;
 }
 
@@ -174,6 +183,7 @@ void SolidToFluidSystem::exchange() {
     kernels::tet_mean_vectors(fluid_u, solver_.tets(), ft.span<double>("velocity_before"), b, e);
   });
   restore_solver();
+  if (settings_.network_inlet) network_sink();
 
   Table& state = store_.table(coupling::state_table);
   double covered = 0.0;
@@ -185,6 +195,32 @@ void SolidToFluidSystem::exchange() {
   state.span<double>("pairs")[0] = static_cast<double>(np);
   state.span<double>("cut_cells")[0] = static_cast<double>(cut);
   state.span<double>("solid_volume")[0] = covered;
+}
+
+// What the cracks' network took in since the last exchange (its well's book, kg) leaves the fluid over the
+// coming fluid step, from the cell that holds the inlet: div u = -(dm / rho) / (dt |K|) there. The books
+// (inlet_injected, inlet_sink_mass) make the two sides' masses agree exactly.
+void SolidToFluidSystem::network_sink() {
+  Table& state = store_.table(coupling::state_table);
+  const double injected = store_.table(fracture_flow::books_table).span<double>("injected")[0];
+  double& seen = state.span<double>("inlet_injected")[0];
+  const double dm = injected - seen;
+  seen = injected;
+  state.span<double>("inlet_sink_mass")[0] += dm;
+  const auto point = *settings_.network_inlet;
+  const std::span<const double> pt(point.data(), 3);
+  kernels::coupling_broad_phase({pt, pt, pairs_.fluid_lo, pairs_.fluid_hi, 0.0}, pairs_.inlet_broad);
+  double ignored = 0.0;
+  const size_t outside =
+      kernels::interpolate_p1_at_points(solver_.nodes(), solver_.tets(), solver_.pressure(), pt,
+                                        pairs_.inlet_broad.pairs, {&ignored, 1}, {&pairs_.inlet_cell, 1});
+  if (outside > 0)
+    throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
+                            point[1], point[2]));
+  auto source = solver_.volume_source();
+  std::fill(source.begin(), source.end(), 0.0);
+  const size_t k = static_cast<size_t>(pairs_.inlet_cell);
+  source[k] = -(dm / settings_.rho) / (settings_.dt * solver_.volumes()[k]);
 }
 
 void SolidToFluidSystem::restore_solver() {
@@ -220,6 +256,10 @@ Access FluidToSolidSystem::access() const {
     a.reads.push_back(col(solid::node_table, "x"));
     a.reads.push_back(col(solid::face_table, "nodes"));
     a.writes.push_back(col(solid::face_table, "fluid_pressure"));
+  }
+  if (settings_.network_inlet) {
+    a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
+    a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
   }
   if (settings_.added_mass > 0.0) {
     a.reads.push_back(col(solid::node_table, "v"));
@@ -265,6 +305,7 @@ void FluidToSolidSystem::exchange(bool initial) {
     std::fill(node_force.begin(), node_force.end(), 0.0);  // the wetted faces carry the fluid's push
   if (settings_.added_mass > 0.0) add_virtual_mass_force();
   if (!pairs_.wet_faces.empty()) sample_wetted_faces();
+  if (settings_.network_inlet) sample_network_inlet();
 
   // Totals, in a fixed order. The fluid's own absorption force, sigma_K |K| (ubar_K - u_s,K), is summed
   // independently of the pairs: with the penalty total it checks Newton's third law.
@@ -384,6 +425,22 @@ void FluidToSolidSystem::sample_wetted_faces() {
   auto p = faces.span<double>("fluid_pressure");
   for (size_t k = 0; k < pairs_.wet_faces.size(); ++k)
     p[static_cast<size_t>(pairs_.wet_faces[k])] = pairs_.wet_pressure[k];
+}
+
+// The fluid's pressure at the network inlet, the cracks' well pressure over the next window.
+void FluidToSolidSystem::sample_network_inlet() {
+  const auto point = *settings_.network_inlet;
+  const std::span<const double> pt(point.data(), 3);
+  kernels::coupling_broad_phase({pt, pt, pairs_.fluid_lo, pairs_.fluid_hi, 0.0}, pairs_.inlet_broad);
+  const Table& ft = store_.table(fluid::tet_table);
+  const size_t outside = kernels::interpolate_p1_at_points(
+      store_.table(fluid::node_table).span<double>("x"), ft.span<int32_t>("nodes"),
+      store_.table(fluid::node_table).span<double>("pressure"), pt, pairs_.inlet_broad.pairs,
+      {&pairs_.inlet_pressure, 1});
+  if (outside > 0)
+    throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
+                            point[1], point[2]));
+  store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0] = pairs_.inlet_pressure;
 }
 
 // The wetted faces' total push, sum_f -p_f n_f A_f (kernels::face_area_vector), in face order.

@@ -7,7 +7,9 @@
 //   2. the fluid steps (FluidStepSystem) to the window's end;
 //   3. FluidToSolidSystem: the fluid's force on every solid node, held over the next window.
 // Both share the window's candidate pairs and overlap volumes (ExchangePairs).
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -26,7 +28,8 @@ struct ExchangeSettings {
   double added_mass = 0.0;             // c_a (FluidSolidSpec::added_mass)
   bool dilatation = false;             // FluidSolidSpec::dilatation: the continuity source s_K
   bool fluid_continuity = false;       // FluidSolidSpec::Continuity::fluid: continuity weighted by 1 - alpha
-  bool volume_force = true;            // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
+  std::optional<std::array<double, 3>> network_inlet;  // FluidSolidSpec::network_inlet
+  bool volume_force = true;  // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
   int oscillation_lag = 1;  // fluid steps between a solid state and the force answering it (2: concurrent)
 };
@@ -48,6 +51,10 @@ struct ExchangePairs {
   std::vector<double> wet_points, wet_pressure;
   kernels::CouplingBroadPhaseWorkspace wet_broad;
   size_t wet_outside = 0;  // centroids outside the fluid mesh at the last exchange (they get 0)
+  // The network inlet (FluidSolidSpec::network_inlet): its fluid tet and pressure at the last exchange.
+  kernels::CouplingBroadPhaseWorkspace inlet_broad;
+  int32_t inlet_cell = -1;
+  double inlet_pressure = 0.0;
 };
 
 class SolidToFluidSystem : public System {
@@ -68,6 +75,7 @@ class SolidToFluidSystem : public System {
 
  private:
   void find_pairs(std::span<const double> x, std::span<const double> v);
+  void network_sink();
 
   Store& store_;
   fluid::FluidSolver& solver_;
@@ -97,6 +105,7 @@ class FluidToSolidSystem : public System {
 
  private:
   void sample_wetted_faces();
+  void sample_network_inlet();
   void wetted_face_total(double force[3]) const;
   void add_virtual_mass_force();
   void watch_oscillation(const double force[3]);

@@ -9,6 +9,7 @@
 #include "engine/scene/output_fields.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
 #include "systems/fluid/fluid_tables.hpp"
+#include "systems/fracture_flow/fracture_flow_tables.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -29,6 +30,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.added_mass = spec.added_mass;
   settings_.dilatation = spec.dilatation;
   settings_.fluid_continuity = spec.continuity == FluidSolidSpec::Continuity::fluid;
+  settings_.network_inlet = spec.network_inlet;
   settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;
@@ -38,6 +40,10 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   for (const char* c : {"force", "penalty", "absorption", "previous_force", "previous_change"})
     state.add<double>(c, 3);
   state.add<double>("growing", 1);
+  // The network inlet's books: the network's intake (its well's injected mass) at the last exchange, and
+  // the mass the fluid has given up through the sink so far.
+  if (spec.network_inlet)
+    for (const char* c : {"inlet_injected", "inlet_sink_mass"}) state.add<double>(c, 1);
   // Concurrent only (so the sequential coupling's state, and its hash, are unchanged): 1 while the store's
   // fluid state is already the window's end, a checkpoint having joined the fluid step mid-window. A
   // restart from there must not take that step again.
@@ -272,6 +278,12 @@ void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>
   }
   row.emplace_back("fluid_region_pressure_min", pmin);
   row.emplace_back("fluid_region_pressure_max", pmax);
+  if (settings_.network_inlet) {
+    row.emplace_back("fluid_solid_inlet_pressure",
+                     store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0]);
+    row.emplace_back("fluid_solid_inlet_sink_mass", state.span<double>("inlet_sink_mass")[0]);
+    row.emplace_back("fluid_solid_inlet_injected", state.span<double>("inlet_injected")[0]);
+  }
 }
 
 void FluidSolidModel::summarize(nlohmann::json& summary) const {

@@ -119,6 +119,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   source_.assign(3 * nt, 0.0);
   dilatation_.assign(nt, 0.0);
   continuity_weight_.assign(nt, 1.0);
+  volume_source_.assign(nt, 0.0);
   for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
 
   momentum_ = p1_pattern(static_cast<int32_t>(nn), tet_nodes_);
@@ -278,8 +279,8 @@ int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> 
 // (zero without one) adds +(V/4) s_t to each corner.
 void FluidSolver::add_dilatation(std::span<double> residual) const {
   for (size_t t = 0; t < dilatation_.size(); ++t) {
-    if (dilatation_[t] == 0.0) continue;
-    const double share = 0.25 * volume_[t] * continuity_weight_[t] * dilatation_[t];
+    if (dilatation_[t] == 0.0 && volume_source_[t] == 0.0) continue;
+    const double share = 0.25 * volume_[t] * (continuity_weight_[t] * dilatation_[t] + volume_source_[t]);
     for (int q = 0; q < 4; ++q) residual[static_cast<size_t>(tet_nodes_[4 * t + q])] += share;
   }
 }

@@ -129,6 +129,9 @@ class FluidSolver {
   // pressure is the extension of the fluid's that lets no fluid through the solid, instead of the answer
   // to the solid's volume changes (docs/coupling.md). Call absorption_changed() after writing it.
   std::span<double> continuity_weight() { return continuity_weight_; }
+  // A volume source per tet, div u = q [1/s], not weighted by the continuity's weight (a sink where fluid
+  // leaves the mesh into the cracks' network: its integral is what leaves, exactly).
+  std::span<double> volume_source() { return volume_source_; }
   void absorption_changed() { pressure_matrix_stale_ = true; }
   // Body force per unit volume f(x, t) [N/m^3], evaluated at the nodes (theta-weighted in time).
   void set_body_force(VectorField f) { body_force_fn_ = std::move(f); }
@@ -204,7 +207,7 @@ class FluidSolver {
   std::vector<double> phi_value_;
   // Fields.
   std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
-  std::vector<double> sigma_, target_, source_, dilatation_, continuity_weight_;
+  std::vector<double> sigma_, target_, source_, dilatation_, continuity_weight_, volume_source_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
   bool weighted_ = false;              // some continuity weight is below 1

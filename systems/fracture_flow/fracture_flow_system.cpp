@@ -64,7 +64,11 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
   for (const char* c :
        {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work", "initial_mass"})
     books.add<double>(c, 1);
+  // The well's pressure when the surrounding fluid sets it (FractureFlowSpec::pressure_from_fluid): written
+  // by the fluid-solid coupling after each fluid step, the fluid's initial pressure until then.
+  if (spec_.pressure_from_fluid) books.add<double>("inlet_pressure", 1);
   books.resize(1);
+  if (spec_.pressure_from_fluid) books.span<double>("inlet_pressure")[0] = spec_.initial_pressure;
   Table& joined = store_.add_table(fracture_flow::joint_table);
   joined.add<int64_t>("joined", 1);
   joined.resize(store_.table(solid::joint_table).size());
@@ -105,6 +109,7 @@ Access FractureFlowSystem::access() const {
                                  col(solid::event_table, "joint")};
   if (spec_.wet_damage < 1.0) reads.push_back(col(solid::joint_table, "d_max"));
   if (well_is_wall()) reads.push_back(col(N, "x0"));
+  if (spec_.pressure_from_fluid) reads.push_back(col(books_table, "inlet_pressure"));
   std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "crack_force"),
                                   col(solid::energy_table, "external_work")};
   for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})
@@ -348,6 +353,9 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   if (spec_.pressure) {
     role_[w] = uint8_t(FlowRole::fixed);
     fixed_[w] = (*spec_.pressure)(t_end);
+  } else if (spec_.pressure_from_fluid) {
+    role_[w] = uint8_t(FlowRole::fixed);
+    fixed_[w] = store_.table(books_table).span<double>("inlet_pressure")[0];
   }
 
   // The closure's compliance, and the pressure the predicted volumes already felt (the compliance-weighted

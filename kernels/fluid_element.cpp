@@ -232,22 +232,28 @@ inline bool pressure_rhs_element(const FluidPressureRhsArgs& a, size_t t, double
   const double v = a.volume[t];
   if (v <= 0.0) return false;
   const double* g = &a.grad[12 * t];
-  double div = 0.0, r[3] = {0.0, 0.0, 0.0}, flux[3] = {0.0, 0.0, 0.0};
+  double div = 0.0, r[3] = {0.0, 0.0, 0.0};
   for (int n = 0; n < 4; ++n) {
     const size_t nn = static_cast<size_t>(nodes[n]);
     for (int d = 0; d < 3; ++d) {
       div += g[3 * n + d] * a.u[3 * nn + d];
       r[d] += g[3 * n + d] * a.p[nn] - (a.xi.empty() ? 0.0 : 0.25 * a.xi[3 * nn + d]);
-      flux[d] += g[3 * n + d] * a.p[nn] - (a.body_force.empty() ? 0.0 : 0.25 * a.body_force[3 * nn + d]);
     }
   }
   const double tau = a.tau_p.empty() ? 0.0 : a.tau_p[t];
   const double w = a.div_weight.empty() ? 1.0 : a.div_weight[t];
-  const double h = a.relative_flux.empty() ? 0.0 : a.relative_flux[t];
-  for (int q = 0; q < 4; ++q) {
+  for (int q = 0; q < 4; ++q)
     x[q] = 0.25 * v * w * div + tau * v * (g[3 * q] * r[0] + g[3 * q + 1] * r[1] + g[3 * q + 2] * r[2]);
-    if (h != 0.0) x[q] += h * v * (g[3 * q] * flux[0] + g[3 * q + 1] * flux[1] + g[3 * q + 2] * flux[2]);
+  const double h = a.relative_flux.empty() ? 0.0 : a.relative_flux[t];
+  if (h == 0.0) return true;  // a cell the fluid fills: no relative flux to add
+  double flux[3] = {0.0, 0.0, 0.0};
+  for (int n = 0; n < 4; ++n) {
+    const size_t nn = static_cast<size_t>(nodes[n]);
+    for (int d = 0; d < 3; ++d)
+      flux[d] += g[3 * n + d] * a.p[nn] - (a.body_force.empty() ? 0.0 : 0.25 * a.body_force[3 * nn + d]);
   }
+  for (int q = 0; q < 4; ++q)
+    x[q] += h * v * (g[3 * q] * flux[0] + g[3 * q + 1] * flux[1] + g[3 * q + 2] * flux[2]);
   return true;
 }
 

@@ -292,8 +292,8 @@ struct FluidSolidSpec {
   bool dilatation = false;
   // Where the fluid's continuity holds. mixture: div u = s in every cell, also those the solid fills (the
   // fictitious fluid inside the solid must follow the solid's volume changes). fluid: weighted by the
-  // fluid's fraction 1 - alpha of each cell, the pressure inside the solid being the harmonic extension
-  // of the fluid's (docs/coupling.md).
+  // fluid's fraction 1 - alpha of each cell, the pressure inside the solid being the extension of the
+  // fluid's that lets no fluid through the solid relative to it (docs/coupling.md).
   enum class Continuity { mixture, fluid };
   Continuity continuity = Continuity::mixture;
   // A point in the fluid [m] (the notch's mouth): the fracture-flow network's well takes the fluid's

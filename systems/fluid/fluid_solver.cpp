@@ -495,7 +495,7 @@ FluidStepReport FluidSolver::step() {
     // 2. Pressure: residual -R(u*, p^k) of the stabilised continuity equation.
     assembly_.pressure_rhs(
         {tet_nodes_, volume_, grad_, u_star_, p_, xi_, tau_p_, continuity_weights(), relative_flux(),
-         body_force_fn_ ? std::span<const double>(body_force_) : std::span<const double>{}},
+         body_force_fn_ && weighted_ ? std::span<const double>(body_force_) : std::span<const double>{}},
         cont_res_);
     add_dilatation(cont_res_);
     if (s.coupling == PressureCoupling::schur_gmres) {

@@ -24,6 +24,23 @@ constexpr size_t kTetGrain = 4096, kPairGrain = 1024;
 bool window_end(const StepContext& ctx, int64_t substeps) {
   return (ctx.step + 1) % substeps == 0;
 }
+
+// The P1 value of `field` at the network inlet and the fluid tet that holds it; an error when the point is
+// outside the fluid's mesh.
+double at_network_inlet(const std::array<double, 3>& point, std::span<const double> x,
+                        std::span<const int32_t> tets, std::span<const double> field, ExchangePairs& pairs,
+                        int32_t* cell) {
+  const std::span<const double> pt(point.data(), 3);
+  kernels::coupling_broad_phase({pt, pt, pairs.fluid_lo, pairs.fluid_hi, 0.0}, pairs.inlet_broad);
+  double value = 0.0;
+  int32_t found = -1;
+  if (kernels::interpolate_p1_at_points(x, tets, field, pt, pairs.inlet_broad.pairs, {&value, 1},
+                                        {&found, 1}) > 0)
+    throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
+                            point[1], point[2]));
+  if (cell) *cell = found;
+  return value;
+}
 }  // namespace
 
 SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver, ExchangeSettings settings,
@@ -207,16 +224,8 @@ void SolidToFluidSystem::network_sink() {
   const double dm = injected - seen;
   seen = injected;
   state.span<double>("inlet_sink_mass")[0] += dm;
-  const auto point = *settings_.network_inlet;
-  const std::span<const double> pt(point.data(), 3);
-  kernels::coupling_broad_phase({pt, pt, pairs_.fluid_lo, pairs_.fluid_hi, 0.0}, pairs_.inlet_broad);
-  double ignored = 0.0;
-  const size_t outside =
-      kernels::interpolate_p1_at_points(solver_.nodes(), solver_.tets(), solver_.pressure(), pt,
-                                        pairs_.inlet_broad.pairs, {&ignored, 1}, {&pairs_.inlet_cell, 1});
-  if (outside > 0)
-    throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
-                            point[1], point[2]));
+  at_network_inlet(*settings_.network_inlet, solver_.nodes(), solver_.tets(), solver_.pressure(), pairs_,
+                   &pairs_.inlet_cell);
   auto source = solver_.volume_source();
   std::fill(source.begin(), source.end(), 0.0);
   const size_t k = static_cast<size_t>(pairs_.inlet_cell);
@@ -429,17 +438,10 @@ void FluidToSolidSystem::sample_wetted_faces() {
 
 // The fluid's pressure at the network inlet, the cracks' well pressure over the next window.
 void FluidToSolidSystem::sample_network_inlet() {
-  const auto point = *settings_.network_inlet;
-  const std::span<const double> pt(point.data(), 3);
-  kernels::coupling_broad_phase({pt, pt, pairs_.fluid_lo, pairs_.fluid_hi, 0.0}, pairs_.inlet_broad);
-  const Table& ft = store_.table(fluid::tet_table);
-  const size_t outside = kernels::interpolate_p1_at_points(
-      store_.table(fluid::node_table).span<double>("x"), ft.span<int32_t>("nodes"),
-      store_.table(fluid::node_table).span<double>("pressure"), pt, pairs_.inlet_broad.pairs,
-      {&pairs_.inlet_pressure, 1});
-  if (outside > 0)
-    throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
-                            point[1], point[2]));
+  const Table& nodes = store_.table(fluid::node_table);
+  pairs_.inlet_pressure = at_network_inlet(*settings_.network_inlet, nodes.span<double>("x"),
+                                           store_.table(fluid::tet_table).span<int32_t>("nodes"),
+                                           nodes.span<double>("pressure"), pairs_, nullptr);
   store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0] = pairs_.inlet_pressure;
 }
 

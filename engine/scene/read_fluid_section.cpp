@@ -140,10 +140,14 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   c.dilatation = sec.boolean("dilatation", false);
   static constexpr std::array<std::string_view, 2> kContinuity{"mixture", "fluid"};
   c.continuity = static_cast<FluidSolidSpec::Continuity>(sec.choice("continuity", kContinuity, 0));
-  if (sec.has("network_inlet"))
+  if (sec.has("network_inlet")) {
     c.network_inlet = sec.vec3("network_inlet", any_real("m"), std::nullopt);
-  else
+    c.network_inlet_extent = sec.vec3("network_inlet_extent", non_negative("m"), std::array<double, 3>{});
+  } else {
     sec.declare("network_inlet");
+    sec.forbid("network_inlet_extent",
+               "it sizes the region around fluid_solid.network_inlet, which is absent");
+  }
   static constexpr std::array<std::string_view, 2> kCouplings{"sequential", "concurrent"};
   c.coupling = static_cast<FluidSolidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
   sec.finish();

@@ -320,7 +320,10 @@ void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(1, "added_mass", yaml_real(c.added_mass));
   o.line(1, "dilatation", c.dilatation ? "true" : "false");
   o.line(1, "continuity", c.continuity == FluidSolidSpec::Continuity::mixture ? "mixture" : "fluid");
-  if (c.network_inlet) o.line(1, "network_inlet", vec3(*c.network_inlet));
+  if (c.network_inlet) {
+    o.line(1, "network_inlet", vec3(*c.network_inlet));
+    o.line(1, "network_inlet_extent", vec3(c.network_inlet_extent));
+  }
   o.line(1, "coupling", c.coupling == FluidSolidSpec::Coupling::sequential ? "sequential" : "concurrent");
 }
 

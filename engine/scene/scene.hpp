@@ -301,6 +301,10 @@ struct FluidSolidSpec {
   // that holds it, as a sink (docs/coupling.md "The fluid feeds the cracks"). Needs fracture_flow, whose
   // injection then gives neither rate nor pressure.
   std::optional<std::array<double, 3>> network_inlet;
+  // The box centred on network_inlet [m] over which the sink spreads and the pressure is averaged: the
+  // fluid cells whose centres lie in it, each in proportion to the fluid it holds, (1 - alpha) |K|. All
+  // zero: the one cell that holds the point, and the pressure interpolated at the point.
+  std::array<double, 3> network_inlet_extent{};
   // When the fluid step runs (docs/coupling.md). sequential: on the last solid step of each window, from
   // the solid at the window's end. concurrent: from the solid at the window's start, as a task beside the
   // window's solid sub-steps (the fluid sees the solid one window earlier; the force lag is the same).

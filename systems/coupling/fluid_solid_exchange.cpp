@@ -27,18 +27,61 @@ bool window_end(const StepContext& ctx, int64_t substeps) {
 
 // The P1 value of `field` at the network inlet and the fluid tet that holds it; an error when the point is
 // outside the fluid's mesh.
-double at_network_inlet(const std::array<double, 3>& point, std::span<const double> x,
-                        std::span<const int32_t> tets, std::span<const double> field, ExchangePairs& pairs,
-                        int32_t* cell) {
-  const std::span<const double> pt(point.data(), 3);
-  kernels::coupling_broad_phase({pt, pt, pairs.fluid_lo, pairs.fluid_hi, 0.0}, pairs.inlet_broad);
+// The fluid's pressure where it meets the network, after finding the inlet's cells and their shares
+// (pairs.inlet_cells, pairs.inlet_shares). A point (zero extent): the one cell that holds it, and the P1
+// pressure there. A box: the cells whose centres lie in it, each sharing in proportion to the fluid it
+// holds, (1 - alpha_K) |K|, and the pressure is those shares' mean of the cells' mean pressures: a sink
+// spread over the notch's mouth draws the fluid in as the mouth does, where a one-cell sink would pull
+// it through a point at a speed, and a Bernoulli drop, no notch has.
+double at_network_inlet(const ExchangeSettings& s, std::span<const double> x, std::span<const int32_t> tets,
+                        std::span<const double> solid_fraction, std::span<const double> volumes,
+                        std::span<const double> pressure, ExchangePairs& pairs) {
+  const auto& point = *s.network_inlet;
+  const auto& extent = s.network_inlet_extent;
+  pairs.inlet_cells.clear();
+  pairs.inlet_shares.clear();
+  if (extent[0] == 0.0 && extent[1] == 0.0 && extent[2] == 0.0) {
+    const std::span<const double> pt(point.data(), 3);
+    kernels::coupling_broad_phase({pt, pt, pairs.fluid_lo, pairs.fluid_hi, 0.0}, pairs.inlet_broad);
+    double value = 0.0;
+    int32_t found = -1;
+    if (kernels::interpolate_p1_at_points(x, tets, pressure, pt, pairs.inlet_broad.pairs, {&value, 1},
+                                          {&found, 1}) > 0)
+      throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
+                              point[1], point[2]));
+    pairs.inlet_cells.push_back(found);
+    pairs.inlet_shares.push_back(1.0);
+    return value;
+  }
+  double fluid = 0.0;
+  for (size_t k = 0; k < volumes.size(); ++k) {  // in tet order: deterministic
+    bool inside = true;
+    for (int d = 0; d < 3 && inside; ++d) {
+      double c = 0.0;
+      for (int a = 0; a < 4; ++a) c += 0.25 * x[3 * size_t(tets[4 * k + size_t(a)]) + size_t(d)];
+      inside = std::abs(c - point[size_t(d)]) <= 0.5 * extent[size_t(d)];
+    }
+    if (!inside) continue;
+    const double w = (1.0 - std::clamp(solid_fraction[k], 0.0, 1.0)) * volumes[k];
+    pairs.inlet_cells.push_back(static_cast<int32_t>(k));
+    pairs.inlet_shares.push_back(w);
+    fluid += w;
+  }
+  if (fluid <= 0.0)
+    throw Error(fmt::format(
+        "fluid_solid.network_inlet [{}, {}, {}] with network_inlet_extent [{}, {}, {}]: {} — make the box "
+        "larger than the fluid's cells there, or move it into the fluid",
+        point[0], point[1], point[2], extent[0], extent[1], extent[2],
+        pairs.inlet_cells.empty() ? "no fluid cell has its centre in the box"
+                                  : "the cells with their centres in the box are all inside the solid"));
   double value = 0.0;
-  int32_t found = -1;
-  if (kernels::interpolate_p1_at_points(x, tets, field, pt, pairs.inlet_broad.pairs, {&value, 1},
-                                        {&found, 1}) > 0)
-    throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
-                            point[1], point[2]));
-  if (cell) *cell = found;
+  for (size_t i = 0; i < pairs.inlet_cells.size(); ++i) {
+    pairs.inlet_shares[i] /= fluid;
+    const size_t k = size_t(pairs.inlet_cells[i]);
+    double mean = 0.0;
+    for (int a = 0; a < 4; ++a) mean += 0.25 * pressure[size_t(tets[4 * k + size_t(a)])];
+    value += pairs.inlet_shares[i] * mean;
+  }
   return value;
 }
 }  // namespace
@@ -101,6 +144,7 @@ Access SolidToFluidSystem::access() const {
       a.writes.push_back(c);
   if (settings_.network_inlet) {
     a.reads.push_back(col(fracture_flow::books_table, "injected"));
+    a.reads.push_back(fluid::col(fluid::tet_table, "solid_fraction"));
     a.writes.push_back(col(coupling::state_table, "inlet_injected"));
     a.writes.push_back(col(coupling::state_table, "inlet_sink_mass"));
   }
@@ -215,8 +259,8 @@ void SolidToFluidSystem::exchange() {
 }
 
 // What the cracks' network took in since the last exchange (its well's book, kg) leaves the fluid over the
-// coming fluid step, from the cell that holds the inlet: div u = -(dm / rho) / (dt |K|) there. The books
-// (inlet_injected, inlet_sink_mass) make the two sides' masses agree exactly.
+// coming fluid step from the inlet's cells, each its share s_K: div u = -(dm / rho) s_K / (dt |K|) there.
+// The books (inlet_injected, inlet_sink_mass) make the two sides' masses agree exactly.
 void SolidToFluidSystem::network_sink() {
   Table& state = store_.table(coupling::state_table);
   const double injected = store_.table(fracture_flow::books_table).span<double>("injected")[0];
@@ -224,12 +268,15 @@ void SolidToFluidSystem::network_sink() {
   const double dm = injected - seen;
   seen = injected;
   state.span<double>("inlet_sink_mass")[0] += dm;
-  at_network_inlet(*settings_.network_inlet, solver_.nodes(), solver_.tets(), solver_.pressure(), pairs_,
-                   &pairs_.inlet_cell);
+  at_network_inlet(settings_, solver_.nodes(), solver_.tets(),
+                   store_.table(fluid::tet_table).span<const double>("solid_fraction"), solver_.volumes(),
+                   solver_.pressure(), pairs_);
   auto source = solver_.volume_source();
   std::fill(source.begin(), source.end(), 0.0);
-  const size_t k = static_cast<size_t>(pairs_.inlet_cell);
-  source[k] = -(dm / settings_.rho) / (settings_.dt * solver_.volumes()[k]);
+  for (size_t i = 0; i < pairs_.inlet_cells.size(); ++i) {
+    const size_t k = static_cast<size_t>(pairs_.inlet_cells[i]);
+    source[k] = -(dm / settings_.rho) * pairs_.inlet_shares[i] / (settings_.dt * solver_.volumes()[k]);
+  }
 }
 
 void SolidToFluidSystem::restore_solver() {
@@ -268,6 +315,7 @@ Access FluidToSolidSystem::access() const {
   }
   if (settings_.network_inlet) {
     a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
+    a.reads.push_back(fluid::col(fluid::tet_table, "solid_fraction"));
     a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
   }
   if (settings_.added_mass > 0.0) {
@@ -439,9 +487,10 @@ void FluidToSolidSystem::sample_wetted_faces() {
 // The fluid's pressure at the network inlet, the cracks' well pressure over the next window.
 void FluidToSolidSystem::sample_network_inlet() {
   const Table& nodes = store_.table(fluid::node_table);
-  pairs_.inlet_pressure = at_network_inlet(*settings_.network_inlet, nodes.span<double>("x"),
-                                           store_.table(fluid::tet_table).span<int32_t>("nodes"),
-                                           nodes.span<double>("pressure"), pairs_, nullptr);
+  const Table& ft = store_.table(fluid::tet_table);
+  pairs_.inlet_pressure = at_network_inlet(settings_, nodes.span<double>("x"), ft.span<int32_t>("nodes"),
+                                           ft.span<const double>("solid_fraction"), fluid_volume_,
+                                           nodes.span<double>("pressure"), pairs_);
   store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0] = pairs_.inlet_pressure;
 }
 

@@ -29,6 +29,7 @@ struct ExchangeSettings {
   bool dilatation = false;             // FluidSolidSpec::dilatation: the continuity source s_K
   bool fluid_continuity = false;       // FluidSolidSpec::Continuity::fluid: continuity weighted by 1 - alpha
   std::optional<std::array<double, 3>> network_inlet;  // FluidSolidSpec::network_inlet
+  std::array<double, 3> network_inlet_extent{};        // FluidSolidSpec::network_inlet_extent
   bool volume_force = true;  // FluidSolidSpec::Force::volume; else only the wetted faces' pressure
   std::array<double, 3> solid_gravity{};  // solid.gravity: the virtual mass must not weigh anything
   int oscillation_lag = 1;  // fluid steps between a solid state and the force answering it (2: concurrent)
@@ -51,9 +52,11 @@ struct ExchangePairs {
   std::vector<double> wet_points, wet_pressure;
   kernels::CouplingBroadPhaseWorkspace wet_broad;
   size_t wet_outside = 0;  // centroids outside the fluid mesh at the last exchange (they get 0)
-  // The network inlet (FluidSolidSpec::network_inlet): its fluid tet and pressure at the last exchange.
+  // The network inlet (FluidSolidSpec::network_inlet): its fluid tets, each one's share of the fluid
+  // there (summing to 1), and the pressure at the last exchange.
   kernels::CouplingBroadPhaseWorkspace inlet_broad;
-  int32_t inlet_cell = -1;
+  std::vector<int32_t> inlet_cells;
+  std::vector<double> inlet_shares;
   double inlet_pressure = 0.0;
 };
 

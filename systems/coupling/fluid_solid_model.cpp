@@ -31,6 +31,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.dilatation = spec.dilatation;
   settings_.fluid_continuity = spec.continuity == FluidSolidSpec::Continuity::fluid;
   settings_.network_inlet = spec.network_inlet;
+  settings_.network_inlet_extent = spec.network_inlet_extent;
   settings_.volume_force = spec.force == FluidSolidSpec::Force::volume;
   settings_.solid_gravity = solid.spec().gravity;
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;

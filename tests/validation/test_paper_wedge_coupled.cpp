@@ -1,6 +1,7 @@
 // The paper's wedge coupled for real (scenes/examples/guo2015_wedge.yaml, fluid_solid.network_inlet): the
 // fracture-flow network's well, the notch, takes the surrounding fluid's pressure at the notch's mouth
-// after every fluid step, and what the network takes in leaves the surrounding fluid there as a sink.
+// after every fluid step, and what the network takes in leaves the surrounding fluid there as a sink,
+// both spread over the fluid cells of the mouth (fluid_solid.network_inlet_extent).
 // On the coarse preset (4 - 8 mm cells), for the first 25 us of the settling at 15 MPa:
 //  - the two sides' masses agree: at every window's end the mass the surrounding fluid has given up is the
 //    network's intake, bit for bit, and the sink the fluid step takes integrates to that window's intake
@@ -8,7 +9,8 @@
 //  - the well holds the sampled pressure (exactly, between exchanges);
 //  - the sampled pressure is the inlet's within 0.5 MPa (the bound) while the block settles;
 //  - a run stopped inside a window, with a sink pending in the fluid and the well holding a sampled
-//    pressure, continues from its checkpoint bit for bit.
+//    pressure, continues from its checkpoint bit for bit;
+//  - a box around the inlet that holds no fluid cell's centre is refused, with the box and the remedy.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,7 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/error.hpp"
 #include "engine/scene/load_scene.hpp"
+#include "engine/simulation.hpp"
 #include "systems/fluid/fluid_model.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
@@ -44,13 +48,14 @@ Model& coupling_of(Simulation& sim) {
 }
 
 // The coarse preset, mass-scaled, for the first `end` seconds.
-Scene coarse_wedge(const std::string& end) {
+Scene coarse_wedge(const std::string& end, std::vector<std::string> more = {}) {
   const double kCell = 0.004;
-  return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/examples/guo2015_wedge.yaml",
-                    {"mesh.generate.size_min=" + std::to_string(kCell),
-                     "mesh.generate.size_max=" + std::to_string(2 * kCell),
-                     "fluid.mesh.generate.size_min=" + std::to_string(kCell),
-                     "solid.mass_scaling_step=1.0e-8", "time.end=" + end});
+  std::vector<std::string> overrides{"mesh.generate.size_min=" + std::to_string(kCell),
+                                     "mesh.generate.size_max=" + std::to_string(2 * kCell),
+                                     "fluid.mesh.generate.size_min=" + std::to_string(kCell),
+                                     "solid.mass_scaling_step=1.0e-8", "time.end=" + end};
+  overrides.insert(overrides.end(), more.begin(), more.end());
+  return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/examples/guo2015_wedge.yaml", overrides);
 }
 
 TEST(PaperWedgeCoupled, TheNetworkTakesTheSurroundingFluidsPressureAndItsMass) {
@@ -124,6 +129,23 @@ TEST(PaperWedgeCoupled, ARestartInsideAWindowContinuesBitForBit) {
   ASSERT_TRUE(rest.completed);
   EXPECT_EQ(rest.steps, whole.steps);
   EXPECT_EQ(rest.state_hash, whole.state_hash);
+}
+
+// A box of 0.1 mm around a point of the fluid: smaller than any cell, it holds no cell's centre.
+TEST(PaperWedgeCoupled, AnInletBoxWithoutAFluidCellIsRefused) {
+  const Scene scene = coarse_wedge("2.5e-6", {"fluid_solid.network_inlet_extent=[1.0e-4, 1.0e-4, 1.0e-4]"});
+  RunOptions o;
+  o.progress = false;
+  o.write_output = false;
+  try {
+    Simulation sim(scene, o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("network_inlet_extent [0.0001, 0.0001, 0.0001]"), std::string::npos) << what;
+    EXPECT_NE(what.find("no fluid cell has its centre in the box"), std::string::npos) << what;
+    EXPECT_NE(what.find("make the box larger"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -297,9 +297,9 @@ struct FluidSolidSpec {
   enum class Continuity { mixture, fluid };
   Continuity continuity = Continuity::mixture;
   // A point in the fluid [m] (the notch's mouth): the fracture-flow network's well takes the fluid's
-  // pressure there after every fluid step, and what the network takes in leaves the fluid in the cell
-  // that holds it, as a sink (docs/coupling.md "The fluid feeds the cracks"). Needs fracture_flow, whose
-  // injection then gives neither rate nor pressure.
+  // pressure there after every fluid step, and what the network takes in leaves the fluid there (the cell
+  // that holds it, or the cells of network_inlet_extent), as a sink (docs/coupling.md "The fluid feeds the
+  // cracks"). Needs fracture_flow, whose injection then gives neither rate nor pressure.
   std::optional<std::array<double, 3>> network_inlet;
   // The box centred on network_inlet [m] over which the sink spreads and the pressure is averaged: the
   // fluid cells whose centres lie in it, each in proportion to the fluid it holds, (1 - alpha) |K|. All

@@ -25,17 +25,15 @@ bool window_end(const StepContext& ctx, int64_t substeps) {
   return (ctx.step + 1) % substeps == 0;
 }
 
-// The P1 value of `field` at the network inlet and the fluid tet that holds it; an error when the point is
-// outside the fluid's mesh.
-// The fluid's pressure where it meets the network, after finding the inlet's cells and their shares
-// (pairs.inlet_cells, pairs.inlet_shares). A point (zero extent): the one cell that holds it, and the P1
-// pressure there. A box: the cells whose centres lie in it, each sharing in proportion to the fluid it
-// holds, (1 - alpha_K) |K|, and the pressure is those shares' mean of the cells' mean pressures: a sink
-// spread over the notch's mouth draws the fluid in as the mouth does, where a one-cell sink would pull
-// it through a point at a speed, and a Bernoulli drop, no notch has.
-double at_network_inlet(const ExchangeSettings& s, std::span<const double> x, std::span<const int32_t> tets,
-                        std::span<const double> solid_fraction, std::span<const double> volumes,
-                        std::span<const double> pressure, ExchangePairs& pairs) {
+// The network inlet's fluid cells and their shares (pairs.inlet_cells, pairs.inlet_shares, summing to 1).
+// A point (zero extent): the one cell that holds it. A box: the cells whose centres lie in it, each in
+// proportion to the fluid it holds, (1 - alpha_K) |K|: a sink spread over the notch's mouth draws the
+// fluid in as the mouth does, where a one-cell sink would pull it through a point at a speed, and a
+// Bernoulli drop, no notch has. An error when the point is outside the fluid or the box holds no fluid.
+// `pressure` (per node) only serves the interpolation that finds the point's cell.
+void find_inlet_cells(const ExchangeSettings& s, std::span<const double> x, std::span<const int32_t> tets,
+                      std::span<const double> solid_fraction, std::span<const double> volumes,
+                      std::span<const double> pressure, ExchangePairs& pairs) {
   const auto& point = *s.network_inlet;
   const auto& extent = s.network_inlet_extent;
   pairs.inlet_cells.clear();
@@ -43,15 +41,15 @@ double at_network_inlet(const ExchangeSettings& s, std::span<const double> x, st
   if (extent[0] == 0.0 && extent[1] == 0.0 && extent[2] == 0.0) {
     const std::span<const double> pt(point.data(), 3);
     kernels::coupling_broad_phase({pt, pt, pairs.fluid_lo, pairs.fluid_hi, 0.0}, pairs.inlet_broad);
-    double value = 0.0;
+    double unused = 0.0;
     int32_t found = -1;
-    if (kernels::interpolate_p1_at_points(x, tets, pressure, pt, pairs.inlet_broad.pairs, {&value, 1},
+    if (kernels::interpolate_p1_at_points(x, tets, pressure, pt, pairs.inlet_broad.pairs, {&unused, 1},
                                           {&found, 1}) > 0)
       throw Error(fmt::format("fluid_solid.network_inlet [{}, {}, {}] is outside the fluid's mesh", point[0],
                               point[1], point[2]));
     pairs.inlet_cells.push_back(found);
     pairs.inlet_shares.push_back(1.0);
-    return value;
+    return;
   }
   double fluid = 0.0;
   for (size_t k = 0; k < volumes.size(); ++k) {  // in tet order: deterministic
@@ -74,9 +72,23 @@ double at_network_inlet(const ExchangeSettings& s, std::span<const double> x, st
         point[0], point[1], point[2], extent[0], extent[1], extent[2],
         pairs.inlet_cells.empty() ? "no fluid cell has its centre in the box"
                                   : "the cells with their centres in the box are all inside the solid"));
+  for (double& share : pairs.inlet_shares) share /= fluid;
+}
+
+// The fluid's pressure where it meets the network, in the cells find_inlet_cells chose: the P1 pressure
+// at the point (one cell), or the shares' mean of the cells' mean pressures (a box).
+double inlet_pressure(const ExchangeSettings& s, std::span<const double> x, std::span<const int32_t> tets,
+                      std::span<const double> pressure, const ExchangePairs& pairs) {
+  const auto& extent = s.network_inlet_extent;
+  if (extent[0] == 0.0 && extent[1] == 0.0 && extent[2] == 0.0) {
+    const kernels::CouplingPair in_cell{0, pairs.inlet_cells[0]};
+    double value = 0.0;
+    kernels::interpolate_p1_at_points(x, tets, pressure, {s.network_inlet->data(), 3}, {&in_cell, 1},
+                                      {&value, 1});
+    return value;
+  }
   double value = 0.0;
   for (size_t i = 0; i < pairs.inlet_cells.size(); ++i) {
-    pairs.inlet_shares[i] /= fluid;
     const size_t k = size_t(pairs.inlet_cells[i]);
     double mean = 0.0;
     for (int a = 0; a < 4; ++a) mean += 0.25 * pressure[size_t(tets[4 * k + size_t(a)])];
@@ -268,7 +280,7 @@ void SolidToFluidSystem::network_sink() {
   const double dm = injected - seen;
   seen = injected;
   state.span<double>("inlet_sink_mass")[0] += dm;
-  at_network_inlet(settings_, solver_.nodes(), solver_.tets(),
+  find_inlet_cells(settings_, solver_.nodes(), solver_.tets(),
                    store_.table(fluid::tet_table).span<const double>("solid_fraction"), solver_.volumes(),
                    solver_.pressure(), pairs_);
   auto source = solver_.volume_source();
@@ -315,7 +327,6 @@ Access FluidToSolidSystem::access() const {
   }
   if (settings_.network_inlet) {
     a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
-    a.reads.push_back(fluid::col(fluid::tet_table, "solid_fraction"));
     a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
   }
   if (settings_.added_mass > 0.0) {
@@ -484,13 +495,13 @@ void FluidToSolidSystem::sample_wetted_faces() {
     p[static_cast<size_t>(pairs_.wet_faces[k])] = pairs_.wet_pressure[k];
 }
 
-// The fluid's pressure at the network inlet, the cracks' well pressure over the next window.
+// The fluid's pressure at the network inlet, the cracks' well pressure over the next window, in the cells
+// the sink of this window's fluid step used (SolidToFluidSystem::network_sink, on the same mesh).
 void FluidToSolidSystem::sample_network_inlet() {
   const Table& nodes = store_.table(fluid::node_table);
-  const Table& ft = store_.table(fluid::tet_table);
-  pairs_.inlet_pressure = at_network_inlet(settings_, nodes.span<double>("x"), ft.span<int32_t>("nodes"),
-                                           ft.span<const double>("solid_fraction"), fluid_volume_,
-                                           nodes.span<double>("pressure"), pairs_);
+  pairs_.inlet_pressure = inlet_pressure(settings_, nodes.span<double>("x"),
+                                         store_.table(fluid::tet_table).span<int32_t>("nodes"),
+                                         nodes.span<double>("pressure"), pairs_);
   store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0] = pairs_.inlet_pressure;
 }
 

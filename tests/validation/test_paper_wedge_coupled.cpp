@@ -26,6 +26,7 @@
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 #include "tests/validation/fracture_flow_support.hpp"
+#include "tests/validation/paper_wedge_support.hpp"
 #include "tests/validation/validation_support.hpp"
 
 namespace rift {
@@ -49,13 +50,8 @@ Model& coupling_of(Simulation& sim) {
 
 // The coarse preset, mass-scaled, for the first `end` seconds.
 Scene coarse_wedge(const std::string& end, std::vector<std::string> more = {}) {
-  const double kCell = 0.004;
-  std::vector<std::string> overrides{"mesh.generate.size_min=" + std::to_string(kCell),
-                                     "mesh.generate.size_max=" + std::to_string(2 * kCell),
-                                     "fluid.mesh.generate.size_min=" + std::to_string(kCell),
-                                     "solid.mass_scaling_step=1.0e-8", "time.end=" + end};
-  overrides.insert(overrides.end(), more.begin(), more.end());
-  return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/examples/guo2015_wedge.yaml", overrides);
+  more.push_back("time.end=" + end);
+  return validation::coupled_wedge_coarse(more);
 }
 
 TEST(PaperWedgeCoupled, TheNetworkTakesTheSurroundingFluidsPressureAndItsMass) {

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene/load_scene.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
+#include "tests/validation/paper_wedge_support.hpp"
 
 namespace rift {
 namespace {
@@ -27,12 +27,10 @@ constexpr double kElement = 0.008;                     // the coarse preset's la
 constexpr double kTipX = 0.0245, kNotchPlaneY = 0.05;  // the notch's tip line (through z)
 constexpr double kRampStart = 1.0e-4;
 
+// No field outputs: the breaks are read from fractures.csv.
 Scene coarse_wedge(std::vector<std::string> more) {
-  std::vector<std::string> overrides{"mesh.generate.size_min=0.004", "mesh.generate.size_max=0.008",
-                                     "fluid.mesh.generate.size_min=0.004", "solid.mass_scaling_step=1.0e-8",
-                                     "output.interval=1.0e-3"};
-  overrides.insert(overrides.end(), more.begin(), more.end());
-  return load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/examples/guo2015_wedge.yaml", overrides);
+  more.push_back("output.interval=1.0e-3");
+  return validation::coupled_wedge_coarse(more);
 }
 
 struct Break {

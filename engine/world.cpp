@@ -128,7 +128,12 @@ void add_coupled_fluid(World& world, const Scene& scene, MeshConversionModel* co
                                fluid::col(F, "solid_velocity")});
   FluidModel& f = *model;
   world.models.push_back(std::move(model));
-  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec, std::move(adapter)));
+  std::vector<int32_t> well_wall_tets;  // the network's well, whose fluid cells the network owns
+  for (const auto& m : world.models)
+    if (const auto* flow = dynamic_cast<const FractureFlowModel*>(m.get()))
+      well_wall_tets = flow->well_wall_tets();
+  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec, std::move(adapter),
+                                                           std::move(well_wall_tets)));
 }
 
 }  // namespace

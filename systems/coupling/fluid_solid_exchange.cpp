@@ -118,6 +118,7 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
         solid_tets.span<double>("volume_at_exchange"), pairs_.solid_dilatation, 0, solid_tets.size());
   }
   ft.add<double>("velocity_before", 3);
+  if (settings_.network_inlet) ft.add<double>("network_cell", 1);
   const size_t ns = store_.table(solid::tet_table).size();
   pairs_.solid_ids.resize(ns);
   std::iota(pairs_.solid_ids.begin(), pairs_.solid_ids.end(), 0);
@@ -139,6 +140,16 @@ void SolidToFluidSystem::fluid_mesh_changed() {
   pairs_.fluid_velocity.resize(3 * nf);
   pairs_.first.resize(nf + 1);
   pairs_.pair_weight.resize(nf);
+  if (wall_tet_.empty()) return;
+  const auto x = solver_.nodes();
+  const auto tets = solver_.tets();
+  in_rock_box_.assign(nf, 1);
+  for (size_t k = 0; k < nf; ++k)
+    for (size_t d = 0; d < 3; ++d) {
+      double c = 0.0;
+      for (size_t a = 0; a < 4; ++a) c += 0.25 * x[3 * size_t(tets[4 * k + a]) + d];
+      if (c < rock_box_[d] || c > rock_box_[d + 3]) in_rock_box_[k] = 0;
+    }
 }
 
 Access SolidToFluidSystem::access() const {
@@ -156,7 +167,11 @@ Access SolidToFluidSystem::access() const {
       a.writes.push_back(c);
   if (settings_.network_inlet) {
     a.reads.push_back(col(fracture_flow::books_table, "injected"));
-    a.reads.push_back(fluid::col(fluid::tet_table, "solid_fraction"));
+    if (store_.has(solid::joint_table)) {
+      a.reads.push_back(col(solid::joint_table, "broken"));
+      a.reads.push_back(col(solid::joint_table, "tets"));
+    }
+    a.writes.push_back(fluid::col(F, "network_cell"));
     a.writes.push_back(col(coupling::state_table, "inlet_injected"));
     a.writes.push_back(col(coupling::state_table, "inlet_sink_mass"));
   }
@@ -255,8 +270,11 @@ void SolidToFluidSystem::exchange() {
     kernels::solid_to_fluid_cells(cells, b, e);
     kernels::tet_mean_vectors(fluid_u, solver_.tets(), ft.span<double>("velocity_before"), b, e);
   });
+  if (settings_.network_inlet) {
+    network_sink();
+    mark_network_cells();
+  }
   restore_solver();
-  if (settings_.network_inlet) network_sink();
 
   Table& state = store_.table(coupling::state_table);
   double covered = 0.0;
@@ -291,6 +309,45 @@ void SolidToFluidSystem::network_sink() {
   }
 }
 
+void SolidToFluidSystem::set_network_wall(std::span<const int32_t> wall_tets) {
+  const size_t ns = store_.table(solid::tet_table).size();
+  wall_tet_.assign(ns, 0);
+  for (int32_t t : wall_tets) wall_tet_[size_t(t)] = 1;
+  network_tet_.resize(ns);
+  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  for (int d = 0; d < 3; ++d) rock_box_[size_t(d)] = rock_box_[size_t(d) + 3] = x0[size_t(d)];
+  for (size_t i = 0; i < x0.size(); ++i) {
+    rock_box_[i % 3] = std::min(rock_box_[i % 3], x0[i]);
+    rock_box_[i % 3 + 3] = std::max(rock_box_[i % 3 + 3], x0[i]);
+  }
+  fluid_mesh_changed();
+}
+
+// fluid_tet.network_cell = 1 where a cell's centre lies in the rock's box at t = 0, or the cell shares
+// volume with a tet on the well's wall or beside a broken joint, and it is not one of the inlet's cells
+// (those hand the network its fluid: their continuity stays).
+void SolidToFluidSystem::mark_network_cells() {
+  std::copy(wall_tet_.begin(), wall_tet_.end(), network_tet_.begin());
+  if (store_.has(solid::joint_table)) {
+    const Table& joints = store_.table(solid::joint_table);
+    const auto broken = joints.span<const uint8_t>("broken");
+    const auto tets = joints.span<const int32_t>("tets");
+    for (size_t j = 0; j < broken.size(); ++j)
+      if (broken[j] != 0) network_tet_[size_t(tets[2 * j])] = network_tet_[size_t(tets[2 * j + 1])] = 1;
+  }
+  const auto owned = store_.table(fluid::tet_table).span<double>("network_cell");
+  const auto& list = pairs_.broad.pairs;
+  parallel_for(owned.size(), kTetGrain, [&](size_t b, size_t e) {
+    for (size_t k = b; k < e; ++k) {
+      bool any = in_rock_box_[k] != 0;
+      for (int64_t p = pairs_.first[k]; p < pairs_.first[k + 1] && !any; ++p)
+        any = pairs_.volume[size_t(p)] > 0.0 && network_tet_[size_t(list[size_t(p)].solid)] != 0;
+      owned[k] = any ? 1.0 : 0.0;
+    }
+  });
+  for (int32_t k : pairs_.inlet_cells) owned[size_t(k)] = 0.0;
+}
+
 void SolidToFluidSystem::restore_solver() {
   const Table& ft = store_.table(fluid::tet_table);
   const auto sigma = ft.span<double>("absorption");
@@ -305,6 +362,12 @@ void SolidToFluidSystem::restore_solver() {
     const auto fraction = ft.span<double>("solid_fraction");
     const auto weight = solver_.continuity_weight();
     for (size_t k = 0; k < fraction.size(); ++k) weight[k] = std::clamp(1.0 - fraction[k], 0.0, 1.0);
+  }
+  if (settings_.network_inlet) {
+    const auto owned = ft.span<double>("network_cell");
+    const auto weight = solver_.continuity_weight();
+    for (size_t k = 0; k < owned.size(); ++k)
+      if (owned[k] != 0.0) weight[k] = 0.0;
   }
   solver_.absorption_changed();
 }

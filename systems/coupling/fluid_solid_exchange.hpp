@@ -72,6 +72,14 @@ class SolidToFluidSystem : public System {
   void fluid_mesh_changed();
   // After a restart: hand the stored absorption and solid velocity back to the solver.
   void restore_solver();
+  // fluid_solid.network_inlet: the solid tets on the network's well (the notch). At every exchange they
+  // mark, with the tets of the broken joints, the fluid cells the network owns (fluid_tet.network_cell):
+  // those whose centre lies in the solid's box at t = 0 (the rock's envelope: its notch and cracks
+  // included) or that share volume with one of those tets, but the inlet's. The notch and the cracks
+  // hold the network's fluid, so there the surrounding fluid's continuity does not hold (its weight is
+  // 0, as inside the solid): as the notch's walls part, the network fills the gap, not the Navier-Stokes
+  // fluid of its cells (docs/coupling.md, "The fluid feeds the cracks").
+  void set_network_wall(std::span<const int32_t> wall_tets);
   // After a restart of the concurrent coupling: the last exchange's pairs, from the solid's node
   // positions then (the cells' values are restored with the store).
   void rebuild_pairs(std::span<const double> x_at_exchange);
@@ -79,11 +87,15 @@ class SolidToFluidSystem : public System {
  private:
   void find_pairs(std::span<const double> x, std::span<const double> v);
   void network_sink();
+  void mark_network_cells();
 
   Store& store_;
   fluid::FluidSolver& solver_;
   ExchangeSettings settings_;
   ExchangePairs& pairs_;
+  std::vector<uint8_t> wall_tet_, network_tet_;  // per solid tet: on the well's wall; in the network
+  std::array<double, 6> rock_box_{};             // the solid's box at t = 0: lo (3), hi (3)
+  std::vector<uint8_t> in_rock_box_;             // per fluid tet: its centre lies in rock_box_
 };
 
 class FluidToSolidSystem : public System {

@@ -20,7 +20,8 @@ int64_t FluidSolidModel::automatic_substeps(double fluid_dt, double solid_stable
 }
 
 FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid,
-                                 const FluidSolidSpec& spec, std::unique_ptr<FluidMeshAdapter> adapter)
+                                 const FluidSolidSpec& spec, std::unique_ptr<FluidMeshAdapter> adapter,
+                                 std::vector<int32_t> well_wall_tets)
     : store_(store), fluid_(fluid), spec_(spec), adapter_(std::move(adapter)) {
   settings_.substeps = fluid.substeps();
   settings_.beta = spec.beta;
@@ -55,6 +56,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   state.resize(1);
   solid.accept_fluid_forces();
   to_fluid_ = std::make_unique<SolidToFluidSystem>(store_, fluid.solver(), settings_, pairs_);
+  if (spec.network_inlet) to_fluid_->set_network_wall(well_wall_tets);
   to_solid_ = std::make_unique<FluidToSolidSystem>(store_, settings_, pairs_, fluid.solver().volumes());
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
     fluid_step_ = &fluid.hand_over_step();
@@ -238,6 +240,9 @@ void FluidSolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vect
       const Table& ft = store_.table(fluid::tet_table);
       g.fields.push_back({"solid_fraction", Center::cell, 1, ElementType::f64,
                           ft.span<double>("solid_fraction").data(), ft.size()});
+      if (settings_.network_inlet)  // which cells hold the network's fluid, not the surrounding fluid's
+        g.fields.push_back({"network_cell", Center::cell, 1, ElementType::f64,
+                            ft.span<double>("network_cell").data(), ft.size()});
     }
     if (g.name == "solid" && wants_field(fields, "fluid_force")) {
       const Table& nodes = store_.table(solid::node_table);
@@ -261,15 +266,17 @@ void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>
   row.emplace_back("fluid_solid_cut_cells", state.span<double>("cut_cells")[0]);
   row.emplace_back("fluid_solid_pairs", state.span<double>("pairs")[0]);
   // The pressure range over the nodes of the cells the fluid fills (solid fraction below 0.5): the real
-  // fluid's, without the fictitious fluid inside the solid.
+  // fluid's, without the fictitious fluid inside the solid, nor the cells the cracks' network owns (their
+  // fluid is the network's, its pressure the network's vertices').
   const Table& ft = store_.table(fluid::tet_table);
   const auto fraction = ft.span<double>("solid_fraction");
+  const auto owned = settings_.network_inlet ? ft.span<double>("network_cell") : std::span<double>{};
   const auto tets = ft.span<int32_t>("nodes");
   const auto p = store_.table(fluid::node_table).span<double>("pressure");
   double pmin = 0.0, pmax = 0.0;
   bool any = false;
   for (size_t k = 0; k < fraction.size(); ++k) {
-    if (!(fraction[k] < 0.5)) continue;
+    if (!(fraction[k] < 0.5) || (!owned.empty() && owned[k] != 0.0)) continue;
     for (int a = 0; a < 4; ++a) {
       const double q = p[static_cast<size_t>(tets[4 * k + a])];
       pmin = any ? std::min(pmin, q) : q;

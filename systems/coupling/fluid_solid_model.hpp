@@ -27,8 +27,11 @@ class FluidSolidModel : public Model {
  public:
   // adapter: fluid.adapt (else null); the fluid is remeshed after every adapter->interval() fluid steps,
   // at the window's end, between the fluid's force on the solid and the solid's state going to the fluid.
+  // well_wall_tets: with fluid_solid.network_inlet, the solid tets on the network's well (the notch):
+  // with the broken joints' tets they mark the fluid cells the network owns (SolidToFluidSystem).
   FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fluid, const FluidSolidSpec& spec,
-                  std::unique_ptr<FluidMeshAdapter> adapter = nullptr);
+                  std::unique_ptr<FluidMeshAdapter> adapter = nullptr,
+                  std::vector<int32_t> well_wall_tets = {});
   ~FluidSolidModel() override;
 
   std::string name() const override { return "fluid_solid"; }

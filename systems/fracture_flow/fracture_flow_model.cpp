@@ -175,4 +175,17 @@ void FractureFlowModel::summarize(nlohmann::json& summary) const {
       {"work_on_solid", book("fluid_work")}, {"dissipation", book("dissipation")}};
 }
 
+// Every solid node belongs to one tet (FEMDEM): a wall face's tet is its first corner's.
+std::vector<int32_t> FractureFlowModel::well_wall_tets() const {
+  const auto tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  std::vector<int32_t> tet_of_node(store_.table(solid::node_table).size(), -1);
+  for (size_t i = 0; i < tet_nodes.size(); ++i) tet_of_node[size_t(tet_nodes[i])] = int32_t(i / 4);
+  const auto& faces = system_->well_wall().face_nodes;
+  std::vector<int32_t> tets;
+  for (size_t f = 0; f < faces.size(); f += 3) tets.push_back(tet_of_node[size_t(faces[f])]);
+  std::sort(tets.begin(), tets.end());
+  tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
+  return tets;
+}
+
 }  // namespace rift

@@ -23,6 +23,8 @@ class FractureFlowModel : public Model {
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;
+  // The solid tets with a face on the well's wall (the notch, fracture_flow.injection.surfaces), sorted.
+  std::vector<int32_t> well_wall_tets() const;
 
  private:
   Store& store_;

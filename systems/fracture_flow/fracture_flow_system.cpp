@@ -517,10 +517,13 @@ FractureFlowSystem::Measures FractureFlowSystem::measure() const {
     for (int d = 0; d < 3; ++d)
       d2 += std::pow(vertex_x_[3 * v + size_t(d)] - vertex_x_[3 * w + size_t(d)], 2);
     m.crack_extent = std::max(m.crack_extent, std::sqrt(d2));
+    // The front is the farthest vertex the fluid has reached, full or still filling: in a crack that
+    // keeps opening ahead of the fluid, the vertices at the front are filling, never full.
+    if (FlowRole(role[r]) == FlowRole::wet || FlowRole(role[r]) == FlowRole::filling)
+      m.front_extent = std::max(m.front_extent, std::sqrt(d2));
     if (FlowRole(role[r]) == FlowRole::wet) {
       ++m.wet_vertices;
       m.wet_area += vertex_area_[v];
-      m.front_extent = std::max(m.front_extent, std::sqrt(d2));
     }
   }
   // The crack's own volume: without the well's storage (and a borehole's expansion).

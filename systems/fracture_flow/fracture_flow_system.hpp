@@ -46,7 +46,8 @@ class FractureFlowSystem : public System {
 
   struct Measures {
     double well_pressure = 0, crack_volume = 0, fluid_volume = 0, wet_area = 0, crack_area = 0;
-    double crack_extent = 0, front_extent = 0;  // largest distance from the well of a network / wet vertex
+    double crack_extent = 0, front_extent = 0;  // largest distance from the well of a network vertex / of one
+                                                // that holds fluid (wet or filling)
     double compression_energy = 0;              // the work that compressed the fluid from rho0
     size_t triangles = 0, wet_vertices = 0;
   };
@@ -57,6 +58,7 @@ class FractureFlowSystem : public System {
   void network_geometry(std::vector<double>& points, std::vector<int32_t>& triangles,
                         std::vector<int32_t>& rows, std::vector<double>& aperture) const;
   size_t well_row() const { return well_row_; }
+  const WellWall& well_wall() const { return wall_; }
   double total_mass() const;
   double specific_compression_energy(double p) const;  // [J/kg]
 

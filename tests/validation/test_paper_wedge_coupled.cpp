@@ -10,7 +10,9 @@
 //  - the sampled pressure is the inlet's within 0.5 MPa (the bound) while the block settles;
 //  - a run stopped inside a window, with a sink pending in the fluid and the well holding a sampled
 //    pressure, continues from its checkpoint bit for bit;
-//  - a box around the inlet that holds no fluid cell's centre is refused, with the box and the remedy.
+//  - a box around the inlet that holds no fluid cell's centre is refused, with the box and the remedy;
+//  - the cells of the rock's box (the notch's among them) are the network's: the surrounding fluid's
+//    continuity weight is 0 there, and 1 - alpha in the inlet's cells and in front of the rock.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -142,6 +144,54 @@ TEST(PaperWedgeCoupled, AnInletBoxWithoutAFluidCellIsRefused) {
     EXPECT_NE(what.find("no fluid cell has its centre in the box"), std::string::npos) << what;
     EXPECT_NE(what.find("make the box larger"), std::string::npos) << what;
   }
+}
+
+// At t = 0, after the first exchange: which cells the network owns, and the continuity's weight the
+// fluid's solver then holds in them.
+TEST(PaperWedgeCoupled, TheNotchsCellsAreTheNetworksAndHoldNoContinuity) {
+  const Scene scene = coarse_wedge("2.5e-6");
+  RunOptions o;
+  o.progress = false;
+  o.write_output = false;
+  Simulation sim(scene, o);
+  fluid::FluidSolver& solver = fluid_of(sim).solver();
+  const Table& tets = sim.world().store.table(fluid::tet_table);
+  const auto owned = tets.span<const double>("network_cell");
+  const auto alpha = tets.span<const double>("solid_fraction");
+  const auto weight = solver.continuity_weight();
+  const auto x = solver.nodes();
+  const auto nodes = solver.tets();
+  const double rock[3] = {0.049, 0.1, 0.05};
+  const auto& inlet = *scene.fluid_solid->network_inlet;
+  const auto& extent = scene.fluid_solid->network_inlet_extent;
+  size_t in_rock = 0, in_notch = 0, in_inlet = 0, in_front = 0, wrong = 0;
+  for (size_t k = 0; k < owned.size(); ++k) {
+    double c[3] = {0, 0, 0};
+    for (size_t a = 0; a < 4; ++a)
+      for (size_t d = 0; d < 3; ++d) c[d] += 0.25 * x[3 * size_t(nodes[4 * k + a]) + d];
+    bool rock_box = true, inlet_box = true;
+    for (size_t d = 0; d < 3; ++d) {
+      rock_box = rock_box && c[d] >= 0.0 && c[d] <= rock[d];
+      inlet_box = inlet_box && std::abs(c[d] - inlet[d]) <= 0.5 * extent[d];
+    }
+    if (inlet_box) {
+      ++in_inlet;
+      wrong += owned[k] != 0.0 || weight[k] != 1.0 - alpha[k];
+    } else if (rock_box) {
+      ++in_rock;
+      in_notch += alpha[k] < 0.9;  // the notch's cells: mostly its fluid
+      wrong += owned[k] != 1.0 || weight[k] != 0.0;
+    } else if (c[0] < 0.0 && alpha[k] == 0.0) {
+      ++in_front;
+      wrong += owned[k] != 0.0 || weight[k] != 1.0;
+    }
+  }
+  std::printf("%zu cells in the rock's box (%zu of them the notch's), %zu the inlet's, %zu in front\n",
+              in_rock, in_notch, in_inlet, in_front);
+  EXPECT_GT(in_notch, 0u);
+  EXPECT_GT(in_inlet, 0u);
+  EXPECT_GT(in_front, 0u);
+  EXPECT_EQ(wrong, 0u);
 }
 
 }  // namespace

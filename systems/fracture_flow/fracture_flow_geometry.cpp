@@ -62,19 +62,21 @@ void FractureFlowSystem::geometry() {
 // The borehole's wall: its pressure area vectors join its nodes' entries (always open: the hole does
 // not close), and the well's volume takes the hole's change from the reference positions, a . (x - x0)
 // summed over the wall's nodes (to first order in the displacement). The well sits at the injection point.
+// The wall nodes' reference positions come from wall_x0_, their copy in entry order: the step reads the
+// solid's x0 column nowhere else, so gathering it per step missed the cache at every node.
 void FractureFlowSystem::wall_geometry(std::span<const double> x) {
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
   wall_area_vector_.assign(3 * wall_entries_, 0.0);
   kernels::add_wall_area_vectors(wall_.face_nodes, wall_entry_, x, wall_area_vector_);
-  hole_change_ = 0.0;
+  double change = 0.0;  // a local sum: the member would be stored and reloaded at every term
   for (size_t e = 0; e < wall_entries_; ++e) {
     const size_t n = size_t(node_[e]);
     for (size_t d = 0; d < 3; ++d) {
       area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];
       open_area_vector_[3 * e + d] += wall_area_vector_[3 * e + d];
-      hole_change_ += wall_area_vector_[3 * e + d] * (x[3 * n + d] - x0[3 * n + d]);
+      change += wall_area_vector_[3 * e + d] * (x[3 * n + d] - wall_x0_[3 * e + d]);
     }
   }
+  hole_change_ = change;
   volume_[0] += hole_change_;
   floor_volume_[0] += hole_change_;  // the hole does not close like a crack: only the crack part is floored
   for (size_t d = 0; d < 3; ++d) vertex_x_[d] = spec_.point[d];

@@ -89,13 +89,16 @@ void FractureFlowSystem::add_well_wall() {
   local_of_row_[well_row_] = 0;
   row_of_local_.push_back(int32_t(well_row_));
   wall_entry_.clear();
+  wall_x0_.clear();
   wall_entries_ = 0;
+  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
   for (int32_t node : wall_.face_nodes) {
     if (entry_of_node_[size_t(node)] < 0) {
       entry_of_node_[size_t(node)] = int32_t(node_.size());
       node_.push_back(node);
       node_vertex_.push_back(0);
       felt_.push_back(0.0);
+      for (size_t d = 0; d < 3; ++d) wall_x0_.push_back(x0[3 * size_t(node) + d]);
       ++wall_entries_;
     }
     wall_entry_.push_back(entry_of_node_[size_t(node)]);

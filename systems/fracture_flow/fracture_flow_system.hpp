@@ -91,6 +91,7 @@ class FractureFlowSystem : public System {
   std::vector<uint8_t> vent_row_;         // 1 per vertex row: on a vent surface
   std::vector<int32_t> wall_entry_;       // 3 per wall face: its corners' entries (the first entries)
   size_t wall_entries_ = 0;               // the wall's nodes: entries [0, wall_entries_)
+  std::vector<double> wall_x0_;           // 3 per wall entry: its node's reference position
   std::vector<double> wall_area_vector_;  // 3 per wall entry, this step
   double hole_change_ = 0.0;              // the hole's volume change from the reference positions [m^3]
   NetworkFlow flow_;

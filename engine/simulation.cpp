@@ -114,6 +114,21 @@ void Simulation::join_background_quietly() noexcept {
   }
 }
 
+// The step count comes from a division of two doubles: beyond 2^53 the double no longer holds every
+// integer, and beyond int64's range the cast is undefined (it came back as one step of time.end, a run
+// that said `completed` after a single step far above its stable one). Such a run could not finish in any
+// case: it is refused with the figures that make it so.
+void Simulation::check_step_count(double steps, double dt, const std::string& source) const {
+  constexpr double kMostSteps = 9007199254740992.0;  // 2^53
+  if (std::isfinite(steps) && steps >= 0.0 && steps <= kMostSteps) return;
+  throw Error(fmt::format(
+      "time.end = {:.6g} s in steps of {:.6g} s ({}) is {:.6g} steps, more than a run can count (2^53) or "
+      "finish. Likely cause: a degenerate element (a flat or sliver tet, a near-zero volume) or an extreme "
+      "material or penalty value makes the stable step tiny, or time.dt is far too small. What to change: "
+      "check the mesh (rift check), the materials and time.dt.",
+      scene_.time.end, dt, source, steps));
+}
+
 void Simulation::choose_dt() {
   const double stable = world_->stable_dt();
   const TimeSpec& t = scene_.time;
@@ -131,6 +146,7 @@ void Simulation::choose_dt() {
           fmt::format("{}.dt = {:.6g} s is above the stable step {:.6g} s of another model in the run",
                       m->name(), *fixed, stable));
     const double n = t.end / *fixed;
+    check_step_count(n, *fixed, fmt::format("{}.dt", m->name()));
     total_steps_ = std::max<int64_t>(1, static_cast<int64_t>(std::llround(n)));
     if (std::abs(n - static_cast<double>(total_steps_)) > 1e-6 * n)
       throw Error(
@@ -160,9 +176,15 @@ void Simulation::choose_dt() {
     requested = t.safety * stable;
   }
   // Whole steps that land exactly on the end time: dt never exceeds the requested one.
+  check_step_count(
+      t.end / requested, requested,
+      t.dt ? std::string("time.dt") : fmt::format("time.safety x the stable step {:.6g} s", stable));
   total_steps_ = static_cast<int64_t>(std::ceil(t.end / requested - 1e-9));
   total_steps_ = std::max<int64_t>(total_steps_, 1);
   dt_ = t.end / static_cast<double>(total_steps_);
+  if (dt_ > requested * (1.0 + 1e-9))  // the promise behind `completed`: no step above the one asked for
+    throw Error(fmt::format("internal error: {} steps of {:.17g} s to t = {:.6g} s exceed the step {:.17g} s",
+                            total_steps_, dt_, t.end, requested));
   spdlog::info("dt = {:.6g} s (stable {:.6g} s), {} steps to t = {:.6g} s, {} thread(s)", dt_, stable,
                total_steps_, t.end, options_.threads);
 }

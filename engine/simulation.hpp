@@ -57,6 +57,7 @@ class Simulation {
   static std::atomic<bool>& interrupt_flag();
 
  private:
+  void check_step_count(double steps, double dt, const std::string& source) const;
   void choose_dt();
   void restart_from_latest();
   void write_output();

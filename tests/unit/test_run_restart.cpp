@@ -294,6 +294,25 @@ TEST(Run, SameStateOnOneTwoAndFourThreads) {
   }
 }
 
+// 1e-25 s steps to the quickstart's end are more than a double counts exactly, and beyond int64: the
+// count once came back as one step of time.end, and the run said `completed`.
+TEST(Run, RefusesAStepCountNoRunCanFinish) {
+  const std::string path = std::string(RIFT_SOURCE_DIR) + "/scenes/examples/quickstart.yaml";
+  for (const char* dt : {"time.dt=1.0e-25", "time.dt=1.0e-300"}) {
+    const Scene scene = load_scene(path, {dt});
+    RunOptions o;
+    o.write_output = false;
+    try {
+      Simulation sim(scene, o);
+      FAIL() << "expected a refusal for " << dt;
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("more than a run can count (2^53) or finish"), std::string::npos) << m;
+      EXPECT_NE(m.find("(time.dt)"), std::string::npos) << m;
+    }
+  }
+}
+
 TEST(Run, RefusesADtAboveTheStableStep) {
   const std::string path = std::string(RIFT_SOURCE_DIR) + "/scenes/examples/quickstart.yaml";
   const Scene scene = load_scene(path, {"time.dt=1.0e-5"});

@@ -3,9 +3,24 @@
 #include <set>
 
 #include "engine/core/error.hpp"
+#include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/lattice_box.hpp"
 
 namespace rift {
+namespace {
+
+// The box of the block at the origin, meshed by CGAL Mesh_3 at one element size (box_generator.hpp): the
+// same surfaces xmin ... zmax as the lattice, and the same mesh for the same block.
+TetMesh unstructured_block(const BlockSpec& b) {
+  MeshGenerateSpec spec;
+  spec.shape = MeshGenerateSpec::Shape::box;
+  spec.size = b.size;
+  spec.size_min = spec.size_max = *b.element_size;
+  spec.max_elements_key = "mesh.max_elements (block '" + b.name + "')";
+  return generate_box_mesh(spec);
+}
+
+}  // namespace
 
 TetMesh generate_block_assembly(const std::vector<BlockSpec>& blocks) {
   TetMesh out;
@@ -13,7 +28,7 @@ TetMesh generate_block_assembly(const std::vector<BlockSpec>& blocks) {
   for (const BlockSpec& b : blocks) {
     if (b.name.empty() || !names.insert(b.name).second)
       throw Error("mesh.generate.blocks: block name '" + b.name + "' is empty or used twice");
-    const TetMesh m = generate_lattice_box(b.cells, b.size);
+    const TetMesh m = b.element_size ? unstructured_block(b) : generate_lattice_box(b.cells, b.size);
     const auto offset = static_cast<int32_t>(out.nodes.size());
     for (const auto& x : m.nodes)
       out.nodes.push_back({x[0] + b.origin[0], x[1] + b.origin[1], x[2] + b.origin[2]});

@@ -93,7 +93,11 @@ void check_lattice_budget(const MeshGenerateSpec& spec) {
   }
   if (const auto& hole = spec.borehole)
     total = static_cast<double>(borehole_box_counts(borehole_box_spec(spec.origin, spec.size, *hole)).tets());
-  for (const BlockSpec& b : spec.blocks) total += tets(b.cells);
+  // An unstructured block: its volume over that of a regular tet of its element size (h^3 / (6 sqrt 2)).
+  for (const BlockSpec& b : spec.blocks)
+    total += b.element_size ? b.size[0] * b.size[1] * b.size[2] * 6.0 * std::sqrt(2.0) /
+                                  (*b.element_size * *b.element_size * *b.element_size)
+                            : tets(b.cells);
   if (total <= static_cast<double>(spec.max_elements)) return;
   throw Error(fmt::format(
       "mesh.generate: the lattice has {:.6g} tets (6 per cell), more than {} = {}; about {:.3g} GB of memory "

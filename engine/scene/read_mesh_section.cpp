@@ -74,11 +74,20 @@ BlockSpec read_block(MapReader& b, size_t index) {
   block.name = b.string("name", "block" + std::to_string(index));
   block.origin = b.vec3("origin", any_real("m"), std::array<double, 3>{});
   block.size = b.vec3("size", positive("m"), std::nullopt);
-  const std::array<double, 3> cells = b.vec3("cells", RealRule{"", 1.0, 4096.0, false, false}, std::nullopt);
-  for (int a = 0; a < 3; ++a) block.cells[a] = static_cast<int>(cells[a]);
-  if (b.ok("cells") &&
-      (cells[0] != block.cells[0] || cells[1] != block.cells[1] || cells[2] != block.cells[2]))
-    b.error("cells", "three whole numbers of cubes, each in [1, 4096]");
+  // Exactly one of cells (a lattice) and element_size (an unstructured mesh).
+  if (b.has("element_size") && !b.has("cells")) {
+    block.element_size = b.real("element_size", positive("m"), std::nullopt);
+    b.declare("cells");
+  } else {
+    const std::array<double, 3> cells =
+        b.vec3("cells", RealRule{"", 1.0, 4096.0, false, false}, std::nullopt);
+    for (int a = 0; a < 3; ++a) block.cells[a] = static_cast<int>(cells[a]);
+    if (b.ok("cells") &&
+        (cells[0] != block.cells[0] || cells[1] != block.cells[1] || cells[2] != block.cells[2]))
+      b.error("cells", "three whole numbers of cubes, each in [1, 4096]");
+    if (b.has("element_size")) b.error("element_size", "either cells or element_size, not both");
+    b.declare("element_size");
+  }
   b.finish();
   return block;
 }

@@ -115,9 +115,12 @@ void emit_mesh(Lines& o, const MeshSpec& m, int indent = 0) {
       o.item(i + 3, "name", quoted(b.name));
       o.line(i + 4, "origin", vec3(b.origin));
       o.line(i + 4, "size", vec3(b.size));
-      o.line(i + 4, "cells",
-             "[" + std::to_string(b.cells[0]) + ", " + std::to_string(b.cells[1]) + ", " +
-                 std::to_string(b.cells[2]) + "]");
+      if (b.element_size)
+        o.line(i + 4, "element_size", yaml_real(*b.element_size));
+      else
+        o.line(i + 4, "cells",
+               "[" + std::to_string(b.cells[0]) + ", " + std::to_string(b.cells[1]) + ", " +
+                   std::to_string(b.cells[2]) + "]");
     }
     return;  // a lattice: the mesher's keys do not apply (the reader forbids them)
   }

@@ -37,9 +37,10 @@ struct CylinderSpec {
 // them needs solid.contact); block k is mesh region `name`, its faces the surfaces `name`_xmin ... _zmax.
 struct BlockSpec {
   std::string name;
-  std::array<double, 3> origin{};  // lower corner [m]
-  std::array<double, 3> size{};    // edge lengths [m]
-  std::array<int, 3> cells{1, 1, 1};
+  std::array<double, 3> origin{};      // lower corner [m]
+  std::array<double, 3> size{};        // edge lengths [m]
+  std::array<int, 3> cells{1, 1, 1};   // a Kuhn lattice of these cubes, or
+  std::optional<double> element_size;  // an unstructured mesh of this element size [m] (CGAL Mesh_3)
 };
 
 // 20 million tets: about 13 GB to mesh and run an unjointed solid, most of this machine class's memory.

@@ -13,9 +13,11 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "engine/core/error.hpp"
 #include "engine/core/vec3.hpp"
+#include "engine/mesh/block_assembly.hpp"
 #include "engine/mesh/box_generator.hpp"
 #include "engine/mesh/mesh_quality.hpp"
 #include "engine/mesh/msh_reader.hpp"
@@ -246,6 +248,36 @@ TEST(BoxGenerator, PlainBoxIsExactAndUniform) {
   EXPECT_EQ(m.surface_names.size(), 6u);
   for (const auto& [name, n] : q.surface_triangles) EXPECT_GT(n, 0u) << name;
   EXPECT_LT(q.max_edge, 1.5 * 2 * 0.02);  // see expect_sizes
+}
+
+// A block of an assembly meshed unstructured (mesh.generate.blocks[i].element_size) beside a lattice one:
+// each at its origin, with its volume, its own six named surfaces and no shared node; the same twice.
+TEST(BoxGenerator, UnstructuredBlockBesideALattice) {
+  BlockSpec base{"base", {-0.02, -0.02, -0.01}, {0.04, 0.04, 0.01}, {4, 4, 1}, std::nullopt};
+  BlockSpec block{"block", {-0.01, -0.01, 0.0}, {0.02, 0.02, 0.02}, {1, 1, 1}, 0.005};
+  const TetMesh m = generate_block_assembly({base, block});
+  const TetMesh again = generate_block_assembly({base, block});
+  EXPECT_EQ(m.nodes, again.nodes);
+  EXPECT_EQ(m.tets, again.tets);
+  ASSERT_EQ(m.region_names, (std::vector<std::string>{"base", "block"}));
+  double volume[2] = {0, 0}, lo_z[2] = {1, 1};
+  std::set<int32_t> nodes[2];
+  for (size_t t = 0; t < m.tets.size(); ++t) {
+    const auto& c = m.tets[t];
+    const int r = m.tet_region[t];
+    Vec3 e[3];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) e[i][k] = m.nodes[c[i + 1]][k] - m.nodes[c[0]][k];
+    volume[r] += std::abs(dot(e[0], cross(e[1], e[2]))) / 6.0;
+    for (int32_t n : c) nodes[r].insert(n), lo_z[r] = std::min(lo_z[r], m.nodes[n][2]);
+  }
+  EXPECT_NEAR(volume[0], 0.04 * 0.04 * 0.01, kRel * 1.6e-5);
+  EXPECT_NEAR(volume[1], 8e-6, kRel * 8e-6);
+  EXPECT_EQ(lo_z[1], 0.0);
+  for (int32_t n : nodes[1]) EXPECT_EQ(nodes[0].count(n), 0u);
+  EXPECT_GT(m.tet_region.size() - 6 * 16, 6u);  // the block is not one lattice cube
+  EXPECT_EQ(m.surface_names.size(), 12u);
+  EXPECT_EQ(m.surface_names[6], "block_xmin");
 }
 
 TEST(BoxGenerator, SameSpecGivesIdenticalMesh) {

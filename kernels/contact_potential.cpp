@@ -206,6 +206,7 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
       out.energy += p * (h_face * pi.area / 12.0 + 0.25 * (dot(n, m) - gt_n * I) +
                          (dot(n, pi.xa) - gt_n * pi.area) / 12.0);
       const double F = p * I;
+      out.stiffness += p * std::abs(pi.area) * 4.0 * std::sqrt(dot(T.grad[j], T.grad[j]));
       double xf[3], bc[4], bt[4];
       for (int d = 0; d < 3; ++d) xf[d] = m[d] / I;
       // The consistent distribution: C's corners by C's barycentric coordinates at x_F (the face's, as x_F
@@ -344,20 +345,22 @@ ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) 
               vrel[d] += ba[c] * args.v[3 * static_cast<size_t>(na[c]) + d] -
                          bb[c] * args.v[3 * static_cast<size_t>(nb[c]) + d];
         double extra[3] = {0.0, 0.0, 0.0};  // friction + damping force on A, applied at x_c
+        const double share = law.reference_stiffness > 0.0 ? r.stiffness / law.reference_stiffness : 1.0;
+        double fd = 0.0;  // the damping force along n, >= -fn (no adhesion)
+        if (damping) {
+          const double vn = dot(vrel, n);
+          fd = std::max(-share * law.normal_damping * vn, -fn);
+          for (int d = 0; d < 3; ++d) extra[d] += fd * n[d];
+          damp_diss = -fd * vn * args.dt;
+        }
         if (friction) {
           double du[3];
           for (int d = 0; d < 3; ++d) du[d] = vrel[d] * args.dt;
-          const FrictionStep fs = coulomb_friction_update(&args.history[3 * q], n, fn, du,
+          const FrictionStep fs = coulomb_friction_update(&args.history[3 * q], n, fn + fd, du,
                                                           law.tangential_stiffness, law.friction);
           for (int d = 0; d < 3; ++d) extra[d] += fs.force[d];
           fric_diss = fs.dissipation;
           if (fs.slip) ++st.sliding;
-        }
-        if (damping) {
-          const double vn = dot(vrel, n);
-          const double fd = std::max(-law.normal_damping * vn, -fn);
-          for (int d = 0; d < 3; ++d) extra[d] += fd * n[d];
-          damp_diss = -fd * vn * args.dt;
         }
         for (int c = 0; c < 4; ++c)
           for (int d = 0; d < 3; ++d) {

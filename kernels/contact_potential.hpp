@@ -49,11 +49,24 @@
 // (A = pair.a), the pair's normal is n = F_A / |F_A| (from B into A), f_n = |F_A|, and its contact point x_c
 // is the F-weighted mean of all the force centres of both ways. v_rel = v_A(x_c) - v_B(x_c), each tet's
 // velocity interpolated linearly (its barycentric coordinates at x_c, extrapolated when x_c lies outside).
-//   friction: coulomb_friction_update below, with du = v_rel dt;
+//   friction: coulomb_friction_update below, with du = v_rel dt and f_n the whole normal force (below);
 //   normal damping (femdem.md 1c's viscous contact, with a per-pair coefficient eta_n [N s/m] chosen by the
 //   caller, e.g. eta_n = 4 xi sqrt(p / rho) A_c / h for the viscous stress 4 xi sqrt(p/rho) d_dot / h on an
-//   area A_c): f_d = -eta_n (v_rel . n) n on A, limited so that the total normal force on A stays >= 0
-//   (no adhesion); its dissipation is -f_d . v_rel dt >= 0.
+//   area A_c; scaled per pair, below): f_d = -eta_n (v_rel . n) n on A, limited so that the total normal
+//   force on A stays >= 0 (no adhesion); its dissipation is -f_d . v_rel dt >= 0.
+// Pair stiffness. k_pair = sum over the polygons of p A_P |grad phi_T| (phi_T's gradient in the polygon's
+// sub-tet, 4 |grad B_j|): the normal stiffness the pair has as it stands, which grows from 0 as two tets
+// start to touch (8 p A / H for two equal tets face to face over an area A, H the tets' height over it).
+// With law.reference_stiffness = k_ref > 0, the pair's eta_n is the law's times k_pair / k_ref: damping
+// then scales with the pair's share of the contact, so a mesh that splits one contact into more pairs (or
+// pairs that barely touch) adds no damping, and eta_n / k_pair is the same for every pair, so a node's
+// damping ratio is set by its stiffest mode (the stable step accounts for it: ContactSystem). A pair that
+// barely touches with the full eta_n instead pushes far harder than its overlap while approaching and may
+// pull only up to its potential force: on a vibrating contact this one-sided push lifts the block off its
+// friction, and on fine meshes (many pairs per node) the explicit damping alone went unstable. k_t is not
+// scaled: the friction history is a force, and a spring that softened under it would release more than it
+// stored. The friction cap is mu times the pair's whole normal force, potential plus damping (>= 0):
+// Coulomb's law on the force the surfaces press with, so damping does not move friction / normal off mu.
 // Friction and damping forces go to A's corners by A's barycentric coordinates at x_c and their opposite to
 // B's by B's, so they keep both the force and the moment balance. Pairs with F_A = 0 get zero force and
 // their friction history is reset (contact lost).
@@ -70,6 +83,8 @@ struct ContactLaw {
   double friction = 0.0;              // mu >= 0 [-]
   double tangential_stiffness = 0.0;  // k_t [N/m] per pair; 0 disables friction (history unused)
   double normal_damping = 0.0;        // eta_n [N s/m] per pair; 0 disables it
+  double reference_stiffness = 0.0;   // k_ref [N/m]: k_t and eta_n are those of a pair of this stiffness
+                                      // (each pair's scaled by k_pair / k_ref); 0: the same for every pair
 };
 
 // The potential force of one tet pair, both ways (no friction, no damping).
@@ -79,6 +94,7 @@ struct TetPairForce {
   double centre[3];  // x_c, the F-weighted mean force centre (valid when weight > 0)
   double weight;     // sum of the contributions' F [N]: 0 when the tets do not overlap
   double energy;     // E = p ∫_{A∩B} (phi_A + phi_B) dV [J] (see above)
+  double stiffness;  // k_pair = sum of p A_P |grad phi| over the polygons, both ways [N/m]
   int polygons;      // number of non-empty (face, sub-tet) polygons
 };
 

@@ -112,6 +112,7 @@ void ContactSystem::derive_constants(const ContactSpec& spec, std::span<const do
   law_.friction = spec.friction;
   law_.tangential_stiffness = spec.friction > 0 ? spec.tangential_penalty * law_.penalty * l : 0.0;
   law_.normal_damping = 2.0 * spec.damping * std::sqrt(k_n * 0.5 * m);
+  law_.reference_stiffness = k_n;
   buffer_ = spec.buffer ? *spec.buffer : 0.1 * l;
 }
 
@@ -213,6 +214,12 @@ void ContactSystem::estimate_stable_step() {
     joint_face_stable_step_ = std::min(joint_face_stable_step_, step(joint[n], n));
     outer_face_stable_step_ = std::min(outer_face_stable_step_, step(outer[n], n));
   }
+}
+
+double ContactSystem::damped_step(double dt) const {
+  if (!(law_.reference_stiffness > 0) || !(stable_step_ > 0) || !std::isfinite(stable_step_)) return dt;
+  const double xi = law_.normal_damping / law_.reference_stiffness * dt / (stable_step_ * stable_step_);
+  return dt * (std::sqrt(1.0 + xi * xi) - xi);
 }
 
 std::vector<double> matched_contact_penalties(const Store& store, std::span<const double> joint_penalty) {

@@ -30,8 +30,9 @@
 // Per-pair constants from the mesh's mean tet (volume V, face area A, edge L, density rho): normal stiffness
 // of a face-to-face contact k_n = 8 p A^2 / (3 V) (both ways: p A delta / (H / 4) each, H = 3 V / A),
 // tangential k_t = tangential_penalty x p L, damping eta_n = 2 xi sqrt(k_n m / 2) (critical for two tets of
-// mass m = rho V on the spring k_n). The stable step estimate (stable_step below) uses each face's own V, A
-// and the node masses.
+// mass m = rho V on the spring k_n); each pair's eta_n is scaled by its own stiffness over k_n
+// (kernels/contact_potential.hpp). The stable step estimate (stable_step below) uses each face's own V, A
+// and the node masses, without the damping; damped_step() shortens a combined step for it.
 #include <memory>
 #include <span>
 #include <vector>
@@ -79,6 +80,12 @@ class ContactSystem : public System {
   double stable_step() const { return stable_step_; }
   double joint_face_stable_step() const { return joint_face_stable_step_; }
   double outer_face_stable_step() const { return outer_face_stable_step_; }
+  // The central difference with the explicit (lagged) contact damping: a node's fastest mode, of frequency
+  // omega = 2 / dt (dt the undamped step of everything acting on it), carries the contact's damping
+  // eta_n / k_n per unit contact stiffness, whose omega_c^2 is at most (2 / stable_step())^2: its damping
+  // ratio is xi = (eta_n / k_n) omega_c^2 / (2 omega) <= (eta_n / k_n) dt / stable_step()^2, and the step
+  // is stable for dt (sqrt(1 + xi^2) - xi) (Belytschko, Liu & Moran, Nonlinear Finite Elements, 6.2.5).
+  double damped_step(double dt) const;
   // The contact springs' stiffness on each node's row, K_n [N/m] (estimate_stable_step): of the faces of
   // joints and of the outer faces; with the other side moving too, omega_n^2 <= 2 K_n / m_n. Sized to the
   // node count.

@@ -48,7 +48,10 @@ void SolidModel::scale_masses() {
   const double before = kernels::node_stable_step(stiffness, mass);
   mass_scaling_ = kernels::scale_masses_to_step(stiffness, spec_.mass_scaling_step, mass, inv_mass);
   stable_dt_ = kernels::node_stable_step(stiffness, mass);
-  if (contact_) contact_->update_stable_step();
+  if (contact_) {
+    contact_->update_stable_step();
+    stable_dt_ = contact_->damped_step(stable_dt_);
+  }
   store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
 
   const double fraction = mass_scaling_.added / mass0_;

@@ -70,7 +70,8 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
     const double inv_t = 1.0 / (tet_stable_dt_ * tet_stable_dt_);
     const double inv_j = std::isfinite(joint_stable_dt_) ? 3.0 / (joint_stable_dt_ * joint_stable_dt_) : 0.0;
     const double dt_cj = contact_->joint_face_stable_step(), dt_co = contact_->outer_face_stable_step();
-    stable_dt_ = 1.0 / std::sqrt(inv_t + std::max(inv_j, 1.0 / (dt_cj * dt_cj)) + 1.0 / (dt_co * dt_co));
+    stable_dt_ = contact_->damped_step(
+        1.0 / std::sqrt(inv_t + std::max(inv_j, 1.0 / (dt_cj * dt_cj)) + 1.0 / (dt_co * dt_co)));
   } else if (spec_.fracture) {
     spdlog::warn(
         "solid: a fracture zone without solid.contact: the faces of broken joints will pass "
@@ -255,14 +256,18 @@ void SolidModel::summarize(nlohmann::json& summary) const {
   s["fractures"] = {{"tensile", count[1]}, {"shear", count[2]}, {"initial", count[3]}};
   if (contact_) {
     const ContactTotals c = contact_->totals();
-    s["contact"] = {{"bodies", contact_->bodies()},
-                    {"candidates", c.candidates},
-                    {"pairs", c.pairs},
-                    {"touching", c.touching},
-                    {"detections", c.detections},
-                    {"penalty", contact_->law().penalty},
-                    {"buffer", contact_->buffer()},
-                    {"stable_dt", contact_->stable_step()}};
+    s["contact"] = {
+        {"bodies", contact_->bodies()},
+        {"candidates", c.candidates},
+        {"pairs", c.pairs},
+        {"touching", c.touching},
+        {"detections", c.detections},
+        {"penalty", contact_->law().penalty},
+        {"buffer", contact_->buffer()},
+        {"stable_dt", contact_->stable_step()},
+        {"damping_time", contact_->law().reference_stiffness > 0
+                             ? contact_->law().normal_damping / contact_->law().reference_stiffness
+                             : 0.0}};
   }
 }
 

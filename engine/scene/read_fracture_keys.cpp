@@ -77,7 +77,7 @@ ContactSpec read_contact_section(MapReader& c) {
   spec.penalty = c.optional_real("penalty", positive("Pa"));
   spec.friction = c.real("friction", non_negative(""), 0.0);
   spec.tangential_penalty = c.real("tangential_penalty", positive(""), 0.1);
-  spec.damping = c.real("damping", RealRule{"", 0.0, 1.0, true, true}, 0.0);
+  spec.damping = c.real("damping", RealRule{"", 0.0, 1.0, false, false}, 0.0);
   spec.buffer = c.optional_real("buffer", positive("m"));
   c.finish();
   return spec;

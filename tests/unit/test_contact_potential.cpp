@@ -401,18 +401,24 @@ TEST(ContactFriction, StickThenSlipAtTheCap) {
   EXPECT_NEAR(std::hypot(r.force[0], r.force[1], r.force[2]), 2.0, 1e-12);
 }
 
-// Through contact_forces: A's apex in B's top face, A sliding along x with B at rest. The friction force on
-// A opposes the motion, reaches mu f_n and then dissipates mu f_n v dt per step; force and moment balance
-// hold with friction and damping; and splitting the range does not change anything.
-TEST(ContactFriction, PairsThroughTheDriver) {
-  // Nodes 0-3: tet A, nodes 4-7: tet B.
-  const double delta = 0.02, r = 0.2, h = 0.5;
+// Nodes 0-3: tet A, its apex delta deep in the top face (z = 0) of tet B, nodes 4-7.
+std::vector<double> apex_in_top_face(double delta) {
+  const double r = 0.2, h = 0.5;
   std::vector<double> x = {0.3, 0.3, -delta};
   for (int k = 0; k < 3; ++k) {
     const double t = 2.0 * std::numbers::pi * k / 3.0 + 0.1;
     x.insert(x.end(), {0.3 + r * std::cos(t), 0.3 + r * std::sin(t), h - delta});
   }
   x.insert(x.end(), {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.3, 0.3, -1.0});
+  return x;
+}
+
+// Through contact_forces: A's apex in B's top face, A sliding along x with B at rest. The friction force on
+// A opposes the motion, reaches mu f_n and then dissipates mu f_n v dt per step; force and moment balance
+// hold with friction and damping; and splitting the range does not change anything.
+TEST(ContactFriction, PairsThroughTheDriver) {
+  const double delta = 0.02;
+  std::vector<double> x = apex_in_top_face(delta);
   const double vx = 0.1, dt = 1e-3;
   std::vector<double> v(24, 0.0);
   for (int c = 0; c < 4; ++c) v[3 * c] = vx;
@@ -497,6 +503,67 @@ TEST(ContactFriction, PairsThroughTheDriver) {
   EXPECT_EQ(st.touching, 0u);
   EXPECT_EQ(*std::max_element(force.begin(), force.end()), 0.0);
   EXPECT_EQ(history, std::vector<double>(3, 0.0));
+}
+
+// The pair's stiffness k_pair (sum of p A_P |grad phi| over its polygons) is the rate at which its normal
+// force grows with the overlap: two tets face to face (B below z = 0, A above z = -delta, the same
+// triangle), against a central difference of f_n in delta. At small delta the polygons of the sub-tets
+// beside the face's edges (whose gradients are not along n) are strips of width ~delta: 1.3 % at
+// delta = 1e-3, so 1 % at delta = 1e-4 leaves a factor of 10 for the O(delta) term.
+TEST(ContactPotential, PairStiffnessIsTheRateOfTheNormalForce) {
+  auto force_at = [](double delta) {
+    const double a[4][3] = {{0, 0, -delta}, {1, 0, -delta}, {0, 1, -delta}, {0.3, 0.3, 1 - delta}};
+    const double b[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, -1}};
+    return tet_pair_potential_force(a, b, kP);
+  };
+  const double delta = 1e-4, eps = 1e-7;
+  const TetPairForce r = force_at(delta);
+  const double rate = (std::hypot(force_at(delta + eps).normal[0], force_at(delta + eps).normal[1],
+                                  force_at(delta + eps).normal[2]) -
+                       std::hypot(force_at(delta - eps).normal[0], force_at(delta - eps).normal[1],
+                                  force_at(delta - eps).normal[2])) /
+                      (2 * eps);
+  EXPECT_NEAR(r.stiffness / rate, 1.0, 0.01);
+  // Face to face over the triangle's area A = 1/2 with H = 1 on both sides: 8 p A / H.
+  EXPECT_NEAR(r.stiffness / (8 * kP * 0.5), 1.0, 0.01);
+  EXPECT_EQ(force_at(-1e-3).stiffness, 0.0);  // apart
+}
+
+// With a reference stiffness the pair's damping is eta_n k_pair / k_ref (a pair that barely touches barely
+// damps: on fine meshes many such pairs share a node, and a full eta_n each made the block hover and the
+// explicit damping unstable), and friction caps at mu times the whole normal force, damping included.
+TEST(ContactFriction, DampingFollowsThePairsStiffnessAndFrictionTheWholeNormalForce) {
+  std::vector<double> x = apex_in_top_face(0.02);
+  const double vx = 0.1, vz = -0.05, dt = 1e-3;
+  std::vector<double> v(24, 0.0);
+  for (int c = 0; c < 4; ++c) v[3 * c] = vx, v[3 * c + 2] = vz;  // sliding along x and approaching
+  const std::vector<int32_t> tet_nodes = {0, 1, 2, 3, 4, 5, 6, 7};
+  const std::vector<ContactPair> pairs = {{0, 1}};
+  std::vector<double> history(3, 0.0), force(24), fn(1), fdiss(1), ddiss(1);
+  ContactLaw law;
+  law.penalty = kP;
+  law.friction = 0.6;
+  law.tangential_stiffness = 1e3 * kP;  // stiff: the cap is reached in the first step
+  law.normal_damping = 1e-3 * kP;
+  double a[4][3], b[4][3];
+  for (int c = 0; c < 4; ++c)
+    for (int d = 0; d < 3; ++d) a[c][d] = x[3 * c + d], b[c][d] = x[12 + 3 * c + d];
+  const double k_pair = tet_pair_potential_force(a, b, kP).stiffness;
+  ASSERT_GT(k_pair, 0.0);
+  for (const double k_ref : {0.0, k_pair, 4 * k_pair}) {
+    law.reference_stiffness = k_ref;
+    const double share = k_ref > 0 ? k_pair / k_ref : 1.0;
+    std::fill(history.begin(), history.end(), 0.0);
+    ContactArgs args{x, v, tet_nodes, pairs, law, dt, history, force, fn, fdiss, ddiss};
+    contact_forces(args, 0, 1);
+    double f[3] = {0, 0, 0};
+    for (int c = 0; c < 4; ++c)
+      for (int d = 0; d < 3; ++d) f[d] += force[3 * c + d];
+    const double damping = -share * law.normal_damping * vz;  // along +z, the pair's normal
+    EXPECT_NEAR(f[2], fn[0] + damping, 1e-9 * fn[0]) << k_ref;
+    EXPECT_NEAR(-f[0], law.friction * (fn[0] + damping), 1e-9 * fn[0]) << k_ref;
+    EXPECT_NEAR(ddiss[0], damping * -vz * dt, 1e-9 * fn[0] * dt) << k_ref;
+  }
 }
 
 // Many pairs: a range split into pieces gives the bits of the whole; the gather sums per node.

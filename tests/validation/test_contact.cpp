@@ -120,6 +120,80 @@ TEST(ContactValidation, BlockSticksBelowTheFrictionAngle) {
   EXPECT_LT(std::abs(v_end), 0.01 * g * std::sin(theta) * 0.1);
 }
 
+// The incline over angles, friction coefficients and meshes: the corners of the study in
+// bench/contact_incline_study.py (docs/validation.md has the whole grid) and its cases that failed before
+// each pair's damping followed its own stiffness (45 and 60 degrees at mu = 0.8 on 2 and 4 cells: 5 - 8 %
+// fast, or stopped by the contact guard). Sliding: the acceleration within 2 % of g (sin - mu cos) (the
+// issue's bound; friction is mu N at every instant of a slide, so only the time average of N enters).
+// Sticking: the drift of the centre, its mean over the last 10 ms less that over 40 - 50 ms (means, so
+// that the elastic ringing left from the drop does not count), below 1e-6 of the block (20 nm). Both: contact
+// never puts energy in, its stored energy (work done on the contact less friction and damping) staying above
+// -1e-3 of the friction dissipation (the central difference's O(dt) share of that work).
+struct InclineCase {
+  double theta_deg, mu;
+  int n;              // cells per side, or the block's edge over the element size
+  bool unstructured;  // CGAL Mesh_3 block instead of the Kuhn lattice
+};
+
+class InclineGrid : public testing::TestWithParam<InclineCase> {};
+
+TEST_P(InclineGrid, SlidesAtGSinMinusMuCosOrSticks) {
+  const InclineCase c = GetParam();
+  const double g = 9.81, theta = c.theta_deg * M_PI / 180.0, block_edge = 0.02;
+  std::vector<std::string> sets = {"solid.gravity=[" + std::to_string(g * std::sin(theta)) + ", 0, " +
+                                       std::to_string(-g * std::cos(theta)) + "]",
+                                   "solid.contact.friction=" + std::to_string(c.mu)};
+  const std::string n = std::to_string(c.n);
+  sets.push_back(c.unstructured
+                     ? "mesh.generate.blocks[1]={name: block, origin: [-0.01, -0.01, 0.0], size: [0.02, "
+                       "0.02, 0.02], element_size: " +
+                           std::to_string(block_edge / c.n) + "}"
+                     : "mesh.generate.blocks[1].cells=[" + n + ", " + n + ", " + n + "]");
+  const Scene scene = validation_scene("contact_incline.yaml", sets);
+  std::vector<int32_t> block;
+  double k = 0, st = 0, sv = 0, stt = 0, stv = 0, least_stored = 0, friction = 0;
+  double x_early = 0, n_early = 0, x_late = 0, n_late = 0;
+  run_watching(scene, 2, [&](Simulation& sim) {
+    if (block.empty()) block = region_nodes(sim, "block");
+    const BodyState s = body_state(sim, block);
+    if (sim.step() % 64 == 0 || sim.step() == sim.total_steps()) {
+      const SolidEnergies e = solid_of(sim).energies();
+      least_stored = std::min(least_stored, e.contact_stored);
+      friction = e.friction;
+    }
+    const double t = sim.time() - 0.5 * sim.dt(), v = s.momentum[0] / s.mass;
+    if (sim.time() < 0.04) return;
+    if (sim.time() < 0.05) x_early += s.com[0], n_early += 1;
+    if (sim.time() >= 0.09) x_late += s.com[0], n_late += 1;
+    k += 1, st += t, sv += v, stt += t * t, stv += t * v;
+  });
+  const bool slides = std::tan(theta) > c.mu;
+  if (slides) {
+    const double a = (k * stv - st * sv) / (k * stt - st * st);
+    const double expected = g * (std::sin(theta) - c.mu * std::cos(theta));
+    RecordProperty("acceleration_rel_error", testing::PrintToString(a / expected - 1));
+    EXPECT_NEAR(a / expected, 1.0, 0.02) << "a = " << a << " m/s^2, expected " << expected;
+  } else {
+    const double drift = x_late / n_late - x_early / n_early;
+    RecordProperty("drift_m", testing::PrintToString(drift));
+    EXPECT_LT(std::abs(drift), 1e-6 * block_edge);
+  }
+  RecordProperty("least_contact_stored_over_friction", testing::PrintToString(least_stored / friction));
+  EXPECT_GT(least_stored, -1e-3 * friction);
+}
+
+INSTANTIATE_TEST_SUITE_P(ContactValidation, InclineGrid,
+                         testing::Values(InclineCase{5, 0.1, 1, false}, InclineCase{5, 0.8, 2, false},
+                                         InclineCase{60, 0.1, 3, false}, InclineCase{60, 0.8, 4, false},
+                                         InclineCase{45, 0.8, 2, false}, InclineCase{30, 0.5, 3, true},
+                                         InclineCase{20, 0.3, 2, true}, InclineCase{10, 0.8, 3, true}),
+                         [](const testing::TestParamInfo<InclineCase>& i) {
+                           return std::to_string(static_cast<int>(i.param.theta_deg)) + "deg_mu" +
+                                  std::to_string(static_cast<int>(std::lround(i.param.mu * 10))) + "_" +
+                                  (i.param.unstructured ? "unstructured" : "lattice") +
+                                  std::to_string(i.param.n);
+                         });
+
 // 2. Head-on collision. Momentum: every contact force is applied with its opposite and the tets' internal
 // forces sum to zero, so the total momentum changes only by round-off: 1e-10 relative to the initial
 // |p| (round-off per step ~1e-16 of the largest nodal momentum, over ~5000 steps). Energy: Munjiza's

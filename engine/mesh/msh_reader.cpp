@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <set>
 #include <unordered_map>
 
@@ -75,6 +76,8 @@ class MshParser {
   void expect_end(std::string_view end_marker);
   int64_t count(std::string_view what);
   TetMesh assemble(MshReadStats* stats);
+  void refuse_duplicate_tets() const;
+  void refuse_coincident_nodes() const;
 
   TextCursor cur_;
   double scale_;
@@ -86,6 +89,10 @@ class MshParser {
   NodeTagMap node_index_;
   std::vector<std::array<int32_t, 4>> tets_;
   std::vector<int> tet_entity_;
+  std::vector<int64_t> tet_tag_;  // the element tag and line of each tet, and each node's tag and line,
+  std::vector<int> tet_line_;     // for the messages of the checks after reading
+  std::vector<int64_t> node_tag_;
+  std::vector<int> node_line_;
   std::vector<std::array<int32_t, 3>> triangles_;
   std::vector<int> triangle_entity_;
   std::map<int, size_t> skipped_;  // element type -> count
@@ -136,6 +143,8 @@ TetMesh MshParser::parse(MshReadStats* stats) {
   }
   if (!have_nodes_) cur_.fail("a $Nodes section", "end of file");
   if (!have_elements_) cur_.fail("an $Elements section", "end of file");
+  refuse_duplicate_tets();
+  refuse_coincident_nodes();
   return assemble(stats);
 }
 
@@ -208,7 +217,9 @@ void MshParser::read_nodes() {
       if (!node_index_.insert(t, static_cast<int32_t>(nodes_.size())))
         cur_.fail("node tags to be unique", "node tag " + std::to_string(t) + " a second time");
       Vec3 x;
+      node_tag_.push_back(t);
       for (double& c : x) c = cur_.real("node coordinate") * scale_;
+      node_line_.push_back(cur_.line());
       for (int k = 0; k < extra; ++k) cur_.real("parametric coordinate");
       nodes_.push_back(x);
     }
@@ -269,6 +280,8 @@ void MshParser::read_element_block(int dim, int entity, int type, int64_t n) {
 
 void MshParser::read_tet(int entity) {
   const int64_t tag = cur_.integer("element tag");
+  tet_tag_.push_back(tag);
+  tet_line_.push_back(cur_.line());
   std::array<int32_t, 4> tet;
   for (int32_t& v : tet) {
     const int64_t node = cur_.integer("node tag");
@@ -292,6 +305,54 @@ void MshParser::read_tet(int entity) {
   }
   tets_.push_back(tet);
   tet_entity_.push_back(entity);
+}
+
+// A tet listed twice (the same four nodes in any order) would count its volume and mass twice.
+void MshParser::refuse_duplicate_tets() const {
+  std::vector<std::array<int32_t, 4>> sorted(tets_);
+  for (auto& t : sorted) std::sort(t.begin(), t.end());
+  std::vector<uint32_t> order(tets_.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](uint32_t a, uint32_t b) { return sorted[a] != sorted[b] ? sorted[a] < sorted[b] : a < b; });
+  for (size_t i = 1; i < order.size(); ++i)
+    if (sorted[order[i]] == sorted[order[i - 1]])
+      cur_.fail_at(tet_line_[order[i]], "each tetrahedron once",
+                   fmt::format("element {} with the four nodes of element {} (line {}); remove one of them",
+                               tet_tag_[order[i]], tet_tag_[order[i - 1]], tet_line_[order[i - 1]]));
+}
+
+// Two node tags at one point (within 1e-12 of the mesh's extent) that tets use: the tets around it are
+// not connected there, an unmeant crack (an intended one: solid.fracture.initial_cracks).
+void MshParser::refuse_coincident_nodes() const {
+  std::vector<uint8_t> used(nodes_.size(), 0);
+  for (const auto& t : tets_)
+    for (const int32_t v : t) used[static_cast<size_t>(v)] = 1;
+  std::vector<uint32_t> order;
+  Vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t n = 0; n < nodes_.size(); ++n)
+    if (used[n]) {
+      order.push_back(n);
+      for (int k = 0; k < 3; ++k)
+        lo[k] = std::min(lo[k], nodes_[n][k]), hi[k] = std::max(hi[k], nodes_[n][k]);
+    }
+  if (order.empty()) return;
+  const Vec3 extent = sub(hi, lo);
+  const double tol = 1e-12 * std::sqrt(dot(extent, extent));
+  std::sort(order.begin(), order.end(),
+            [&](uint32_t a, uint32_t b) { return nodes_[a] != nodes_[b] ? nodes_[a] < nodes_[b] : a < b; });
+  // Sorted by x first: a partner within tol lies among the following nodes whose x is within tol.
+  for (size_t i = 0; i < order.size(); ++i)
+    for (size_t j = i + 1; j < order.size() && nodes_[order[j]][0] - nodes_[order[i]][0] <= tol; ++j) {
+      const Vec3 d = sub(nodes_[order[j]], nodes_[order[i]]);
+      if (dot(d, d) > tol * tol) continue;
+      const uint32_t a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);
+      const Vec3& x = nodes_[a];
+      cur_.fail_at(node_line_[b], "each point once in the tets' nodes",
+                   fmt::format("node {} at ({:.9g}, {:.9g}, {:.9g}), where node {} (line {}) is; merge them "
+                               "(Gmsh: Coherence) or, for a crack, use solid.fracture.initial_cracks",
+                               node_tag_[b], x[0], x[1], x[2], node_tag_[a], node_line_[a]));
+    }
 }
 
 // Element types we do not use are skipped line by line: Gmsh writes one element per line, so this needs

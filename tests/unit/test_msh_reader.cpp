@@ -217,6 +217,18 @@ TEST(MshReader, RejectsNonNumericTokenAndDegenerateTet) {
                "element 106");
 }
 
+// A tet listed twice would count its volume twice; two node tags at one point leave the tets there
+// unconnected. Both are refused where the second one is written, naming the first. Nodes that no tet uses
+// (node 70, a point element's) may coincide with anything.
+TEST(MshReader, RejectsDuplicateTetsAndCoincidentNodes) {
+  const std::string twice = replace(replace(kCube, "8 8 100 107", "8 9 100 108"), "3 1 4 1\n105 10 20 30 40",
+                                    "3 1 4 2\n105 10 20 30 40\n108 30 20 10 40");
+  expect_error("duplicate_tet.msh", twice, "108 30 20 10 40", "the four nodes of element 105");
+  expect_error("coincident.msh", replace(kCube, "1 1 1\n0 0 -1", "1 1 1\n1 1 1.0"), "1 1 1.0",
+               "where node 50");
+  EXPECT_NO_THROW(read_msh(write_file("point_node.msh", replace(kCube, "5 5 5", "0 0 0"))));
+}
+
 TEST(MshReader, RejectsUnterminatedUnknownSection) {
   const std::string text = replace(kCube, "$EndNodeData\n", "");
   expect_error("unterminated.msh", text, "$NodeData", "$EndNodeData");
@@ -388,7 +400,7 @@ TEST(MshWriter, RoundTripGivesTheSameMesh) {
 TEST(MshWriter, RoundTripKeepsInterleavedGroupsInOrder) {
   TetMesh mesh;
   mesh.nodes = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
-  mesh.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}, {0, 1, 2, 3}};
+  mesh.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}, {0, 3, 1, 4}};
   mesh.region_names = {"a", "b"};
   mesh.tet_region = {1, 0, 1};  // three runs: three element blocks
   mesh.surface_names = {"s"};

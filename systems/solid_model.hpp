@@ -81,6 +81,7 @@ class SolidModel : public Model {
   void set_joint_initial_state();
   void build_force_slots();
   void compute_mass_and_stable_dt();
+  void check_step_outlier() const;  // refuses a mesh with a tet whose step is < 1e-4 of the median
   void create_bookkeeping_tables();
   void apply_initial_cracks(const std::vector<uint8_t>& zone);  // zone: 1 per tet, in the fracture zone
   void add_crack_faces();  // two loaded faces per joint, pressed once the joint is broken

@@ -201,8 +201,8 @@ TEST(StabilityExtremes, JointPenaltyThousandTimesYoung) {
 // --- geometry ------------------------------------------------------------------------------------------
 
 // A 2 x 2 x 2 Kuhn block of 1 cm cubes whose centre node is pushed towards x = 2 cm until one tet has a
-// 2 degree dihedral angle (bisection on the push), written to dir/sliver.msh; or the block unperturbed.
-void write_sliver_block(const test::TempDir& dir, bool perturbed) {
+// `angle` degree dihedral angle (bisection on the push), written to dir/sliver.msh; or the block unperturbed.
+void write_sliver_block(const test::TempDir& dir, bool perturbed, double angle = 2.0) {
   TetMesh mesh = generate_lattice_box({2, 2, 2}, {0.02, 0.02, 0.02});
   const size_t centre = 1 + 3 * (1 + 3 * 1);
   const auto start = mesh.nodes[centre];
@@ -210,12 +210,12 @@ void write_sliver_block(const test::TempDir& dir, bool perturbed) {
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
     mesh.nodes[centre] = {start[0] + mid, start[1], start[2]};
-    (measure_quality(mesh).min_dihedral_deg > 2.0 ? lo : hi) = mid;
+    (measure_quality(mesh).min_dihedral_deg > angle ? lo : hi) = mid;
   }
   mesh.nodes[centre] = {start[0] + (perturbed ? lo : 0.0), start[1], start[2]};
   const MeshQuality q = measure_quality(mesh);
   if (perturbed) {
-    ASSERT_NEAR(q.min_dihedral_deg, 2.0, 1e-6);
+    ASSERT_NEAR(q.min_dihedral_deg, angle, 1e-6 * angle);
   }
   ASSERT_EQ(q.inverted, 0u);
   write_msh(mesh, (dir / "sliver.msh").string());
@@ -246,6 +246,25 @@ TEST(StabilityExtremes, SliverTetWithATwoDegreeDihedralAngle) {
   std::printf("sliver: stable step %.4g s, %.1f x below the unperturbed block's\n", with_sliver,
               without / with_sliver);
   expect_stable(run_case(sliver_scene(dir)), "sliver tet, 2 degree dihedral");
+}
+
+// Flatter slivers: at 0.5 degrees the sliver's step is ~1e-3 of the median tet's, which the set-up names in
+// the log and runs; at 0.02 degrees (~4e-6) it refuses the mesh, naming the tet, where it is, its shape
+// and what to change, before any step.
+TEST(StabilityExtremes, AFlatSliverIsNamedAndBeyondTenThousandTimesRefused) {
+  test::TempDir dir;
+  write_sliver_block(dir, true, 0.5);
+  EXPECT_NO_THROW(stable_dt(sliver_scene(dir)));
+  write_sliver_block(dir, true, 0.02);
+  try {
+    stable_dt(sliver_scene(dir));
+    ADD_FAILURE() << "a 0.02 degree sliver was accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    for (const char* part :
+         {"mesh: tet ", " at (", "x the mesh's median", "dihedral angles", "radius ratio", "What to change"})
+      EXPECT_NE(m.find(part), std::string::npos) << m << "\n  should mention " << part;
+  }
 }
 
 // Mass scaling to the unperturbed block's step (solid.mass_scaling_step): the sliver's corners get heavier,

@@ -1,5 +1,7 @@
 // solid.fracture (where joints exist, how they integrate, cracks present at t = 0),
 // solid.materials[i].fracture (joint properties), solid.contact and solid.initial_stress (in-situ state).
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "engine/scene/scene_sections.hpp"
@@ -33,6 +35,20 @@ FractureMaterialSpec read_fracture_material(MapReader& f, double young) {
   m.G_II = f.real("G_II", positive("J/m^2"), std::nullopt);
   // 10 E: the joints then soften the bulk by about 9 % and cut the stable step by about 3 (femdem.md 1d).
   m.penalty = f.real("penalty", positive("Pa"), 10.0 * young);
+  // A joint opens by 2 f_t h / p at its peak (and slips 2 c h / p): below 1e-12 of its size h that is the
+  // round-off of the node positions, and the law's scales (1 / opening) overflow. Such a joint breaks by
+  // round-off, so the strengths must be at least 5e-13 of the penalty.
+  for (const char* key : {"tensile_strength", "cohesion"}) {
+    const double strength = std::string_view(key) == "cohesion" ? m.cohesion : m.tensile_strength;
+    if (f.ok(key) && f.ok("penalty") && !(strength >= 5e-13 * m.penalty))
+      f.error(
+          key,
+          fmt::format("at least 5e-13 x the penalty ({:.3g} Pa), so that a joint's peak opening 2 {} h / p "
+                      "is above the round-off of node positions",
+                      5e-13 * m.penalty, std::string_view(key) == "cohesion" ? "c" : "f_t"),
+          "lower the penalty or raise the strength; for a material that should not hold, leave its tets out "
+          "of solid.fracture's regions");
+  }
   if (f.ok("residual_friction") && f.ok("friction_angle") &&
       m.residual_friction > std::tan(m.friction_angle * M_PI / 180.0) + 1e-12)
     f.error("residual_friction",

@@ -348,10 +348,44 @@ RunResult Simulation::run() {
   return result;
 }
 
+namespace {
+
+// NaN or infinity never reaches a file: a value the guards let through (a derived field overflowing before
+// the state does) stops the run here, naming it, and the output is not written.
+[[noreturn]] void refuse_non_finite(const std::string& what, int64_t step, double time) {
+  throw Error(fmt::format(
+      "run stopped at step {} (t = {:.6g} s): {} is not finite, so the output was not written. Likely cause: "
+      "a "
+      "load or material value beyond what the solver carries in double precision, or an instability the "
+      "guards had not yet caught. What to change: check the loads and material values, or reduce "
+      "time.safety",
+      step, time, what));
+}
+
+void check_finite(std::span<const XdmfGrid> grids, int64_t step, double time) {
+  for (const XdmfGrid& g : grids) {
+    for (size_t i = 0; i < 3 * g.point_count; ++i)
+      if (!std::isfinite(g.points[i]))
+        refuse_non_finite(fmt::format("the {} grid's point {}", g.name, i / 3), step, time);
+    for (const XdmfField& f : g.fields) {
+      if (f.type != ElementType::f64) continue;
+      const auto* v = static_cast<const double*>(f.data);
+      for (size_t i = 0; i < f.rows * static_cast<size_t>(f.components); ++i)
+        if (!std::isfinite(v[i]))
+          refuse_non_finite(fmt::format("field '{}' of the {} grid at row {}", f.name, g.name,
+                                        i / static_cast<size_t>(f.components)),
+                            step, time);
+    }
+  }
+}
+
+}  // namespace
+
 void Simulation::write_output() {
   const auto t0 = clock_type::now();
   std::vector<XdmfGrid> grids;
   for (const auto& m : world_->models) m->output_grids(grids, scene_.output.fields);
+  check_finite(grids, step_, time());
   if (!grids.empty()) series_->write(time(), step_, grids);
   write_time_series();
   ++outputs_written_;
@@ -364,7 +398,10 @@ void Simulation::record_metrics() {
   if (metric_names_.empty())
     for (const auto& [name, value] : row) metric_names_.push_back(name);
   std::vector<double> values{static_cast<double>(step_), time()};
-  for (const auto& [name, value] : row) values.push_back(value);
+  for (const auto& [name, value] : row) {
+    if (!std::isfinite(value)) refuse_non_finite("the time series' " + name, step_, time());
+    values.push_back(value);
+  }
   metric_rows_.push_back(std::move(values));
 }
 

@@ -231,8 +231,7 @@ void SolidModel::summarize(nlohmann::json& summary) const {
   s["mass_damping"] = spec_.mass_damping(0.0);  // at the start; a schedule is in the resolved scene
   s["stable_dt"] = stable_dt_;
   s["tet_stable_dt"] = tet_stable_dt_;
-  s["joint_stable_dt"] =
-      std::isfinite(joint_stable_dt_) ? nlohmann::json(joint_stable_dt_) : nlohmann::json();
+  s["joint_stable_dt"] = joint_stable_dt_;  // infinite without joints (the file says "inf")
   s["critical_tet"] = critical_tet_;
   if (spec_.mass_scaling_step > 0.0)
     s["mass_scaling"] = {{"step", spec_.mass_scaling_step},

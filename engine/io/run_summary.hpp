@@ -17,7 +17,8 @@ class RunSummary {
   // rift::Error when a level on the way already holds a non-object value or a segment is empty.
   void set(std::string_view dotted_path, nlohmann::json value);
 
-  // Pretty-printed (2-space indent), atomic. Invalid UTF-8 in strings is replaced, not fatal.
+  // Pretty-printed (2-space indent), atomic. Invalid UTF-8 in strings is replaced, not fatal; infinities
+  // and NaN are written as the strings "inf", "-inf" and "nan" (JSON has no such numbers).
   void write(const std::filesystem::path& file) const;
 
  private:

@@ -48,6 +48,25 @@ std::vector<std::string> quick_run(const fs::path& out, std::vector<std::string>
   return args;
 }
 
+// A traction of 1e300 Pa overflows the energies in the first steps: the run stops naming the quantity,
+// and neither the time series nor the summary holds inf, nan or null.
+TEST(Cli, ANonFiniteQuantityStopsTheRunAndReachesNoFile) {
+  test::TempDir dir;
+  const CliResult r = rift(quick_run(dir / "out", {"--set", "solid.boundaries[1].value=1e300"}));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("is not finite, so the output was not written"), std::string::npos) << r.output;
+  auto text = [](const fs::path& f) {
+    std::ifstream in(f);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string csv = text(dir / "out" / "timeseries.csv");
+  const std::string summary = text(dir / "out" / "summary.json");
+  ASSERT_FALSE(csv.empty());
+  ASSERT_FALSE(summary.empty());
+  for (const char* bad : {"inf", "nan"}) EXPECT_EQ(csv.find(bad), std::string::npos) << csv;
+  EXPECT_EQ(summary.find("null"), std::string::npos) << summary;
+}
+
 TEST(Cli, SetIndexOutOfRangeIsBadInput) {
   test::TempDir dir;
   const std::string set = "solid.materials[99999999999999999999].density=1";

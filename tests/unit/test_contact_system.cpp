@@ -36,8 +36,8 @@ const Table& table(Simulation& sim, const char* name) {
 
 TEST(BlockAssembly, BlocksAreSeparateBodiesWithPrefixedSurfaces) {
   std::vector<BlockSpec> blocks(2);
-  blocks[0] = {"a", {0, 0, 0}, {1, 1, 1}, {2, 1, 1}};
-  blocks[1] = {"b", {0, 0, 2}, {1, 2, 1}, {1, 2, 1}};
+  blocks[0] = {"a", {0, 0, 0}, {1, 1, 1}, {2, 1, 1}, std::nullopt};
+  blocks[1] = {"b", {0, 0, 2}, {1, 2, 1}, {1, 2, 1}, std::nullopt};
   const TetMesh m = generate_block_assembly(blocks);
   EXPECT_EQ(m.tets.size(), 6u * 2 + 6u * 2);
   EXPECT_EQ(m.nodes.size(), 12u + 12u);

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "engine/core/error.hpp"
@@ -159,6 +161,24 @@ TEST(RunSummary, WritesPrettyJsonThatParsesBack) {
   EXPECT_EQ(parsed["final"]["step"], 1200);
   EXPECT_EQ(parsed["final"]["time"].get<double>(), 0.1);  // nlohmann prints doubles round-trip exact
   EXPECT_EQ(file_count(dir.path()), 1u);
+}
+
+// JSON has no infinity or NaN: they are written as strings, never as null, at any depth.
+TEST(RunSummary, NonFiniteNumbersAreWrittenAsStrings) {
+  test::TempDir dir;
+  RunSummary summary;
+  summary.set("solid.joint_stable_dt", std::numeric_limits<double>::infinity());
+  summary.set("solid.energy.kinetic", -std::numeric_limits<double>::infinity());
+  summary.root()["list"] = {1.5, std::nan("")};
+  const auto file = dir / "run_summary.json";
+  summary.write(file);
+  const std::string text = slurp(file);
+  EXPECT_EQ(text.find("null"), std::string::npos) << text;
+  const auto parsed = nlohmann::json::parse(text);
+  EXPECT_EQ(parsed["solid"]["joint_stable_dt"], "inf");
+  EXPECT_EQ(parsed["solid"]["energy"]["kinetic"], "-inf");
+  EXPECT_EQ(parsed["list"][0].get<double>(), 1.5);
+  EXPECT_EQ(parsed["list"][1], "nan");
 }
 
 }  // namespace

@@ -530,8 +530,9 @@ TEST(ContactPotential, PairStiffnessIsTheRateOfTheNormalForce) {
 }
 
 // With a reference stiffness the pair's damping is eta_n k_pair / k_ref (a pair that barely touches barely
-// damps: on fine meshes many such pairs share a node, and a full eta_n each made the block hover and the
-// explicit damping unstable), and friction caps at mu times the whole normal force, damping included.
+// damps: on fine meshes many such pairs share a node, where a full eta_n each lifts a block off its
+// friction and makes the explicit damping unstable), and friction caps at mu times the whole normal force,
+// damping included.
 TEST(ContactFriction, DampingFollowsThePairsStiffnessAndFrictionTheWholeNormalForce) {
   std::vector<double> x = apex_in_top_face(0.02);
   const double vx = 0.1, vz = -0.05, dt = 1e-3;

@@ -121,10 +121,10 @@ TEST(ContactValidation, BlockSticksBelowTheFrictionAngle) {
 }
 
 // The incline over angles, friction coefficients and meshes: the corners of the study in
-// bench/contact_incline_study.py (docs/validation.md has the whole grid) and its cases that failed before
-// each pair's damping followed its own stiffness (45 and 60 degrees at mu = 0.8 on 2 and 4 cells: 5 - 8 %
-// fast, or stopped by the contact guard). Sliding: the acceleration within 2 % of g (sin - mu cos) (the
-// issue's bound; friction is mu N at every instant of a slide, so only the time average of N enters).
+// bench/contact_incline_study.py (docs/validation.md has the whole grid) and the cases that a damping
+// not proportional to each pair's stiffness gets wrong (45 and 60 degrees at mu = 0.8 on 2 and 4 cells:
+// 5 - 8 % fast, or stopped by the contact guard). Sliding: the acceleration within 2 % of g (sin - mu cos)
+// (the bound; friction is mu N at every instant of a slide, so only the time average of N enters).
 // Sticking: the drift of the centre, its mean over the last 10 ms less that over 40 - 50 ms (means, so
 // that the elastic ringing left from the drop does not count), below 1e-6 of the block (20 nm). Both: contact
 // never puts energy in, its stored energy (work done on the contact less friction and damping) staying above

@@ -354,11 +354,10 @@ namespace {
 // the state does) stops the run here, naming it, and the output is not written.
 [[noreturn]] void refuse_non_finite(const std::string& what, int64_t step, double time) {
   throw Error(fmt::format(
-      "run stopped at step {} (t = {:.6g} s): {} is not finite, so the output was not written. Likely cause: "
-      "a "
-      "load or material value beyond what the solver carries in double precision, or an instability the "
-      "guards had not yet caught. What to change: check the loads and material values, or reduce "
-      "time.safety",
+      "run stopped at step {} (t = {:.6g} s): {} is not finite, so the output was not written. Likely "
+      "cause: a load or material value beyond what the solver carries in double precision, or an "
+      "instability the guards had not yet caught. What to change: check the loads and material values, or "
+      "reduce time.safety",
       step, time, what));
 }
 

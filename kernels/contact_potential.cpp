@@ -169,6 +169,7 @@ void integrate(const Polygon& p, const double X[4][3], int j, const double n[3],
 // C and T, accumulated.
 void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][3], double ft[4][3],
              TetPairForce& out) {
+  double sub_tet_area[4] = {0.0, 0.0, 0.0, 0.0};  // polygon area per target sub-tet, for the stiffness
   for (int f = 0; f < 4; ++f) {
     const double* n = C.n[f];
     double rel[3];
@@ -206,7 +207,7 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
       out.energy += p * (h_face * pi.area / 12.0 + 0.25 * (dot(n, m) - gt_n * I) +
                          (dot(n, pi.xa) - gt_n * pi.area) / 12.0);
       const double F = p * I;
-      out.stiffness += p * std::abs(pi.area) * 4.0 * std::sqrt(dot(T.grad[j], T.grad[j]));
+      sub_tet_area[j] += std::abs(pi.area);
       double xf[3], bc[4], bt[4];
       for (int d = 0; d < 3; ++d) xf[d] = m[d] / I;
       // The consistent distribution: C's corners by C's barycentric coordinates at x_F (the face's, as x_F
@@ -223,6 +224,11 @@ void one_way(const TetGeometry& C, const TetGeometry& T, double p, double fc[4][
       ++out.polygons;
     }
   }
+  // k_pair's share of this way: p A |grad phi_T| per sub-tet, phi_T = 4 B_j there (one root per sub-tet
+  // touched, not per polygon).
+  for (int j = 0; j < 4; ++j)
+    if (sub_tet_area[j] > 0.0)
+      out.stiffness += 4.0 * p * sub_tet_area[j] * std::sqrt(dot(T.grad[j], T.grad[j]));
 }
 
 inline bool boxes_overlap(const TetGeometry& a, const TetGeometry& b) {

@@ -83,8 +83,8 @@ struct ContactLaw {
   double friction = 0.0;              // mu >= 0 [-]
   double tangential_stiffness = 0.0;  // k_t [N/m] per pair; 0 disables friction (history unused)
   double normal_damping = 0.0;        // eta_n [N s/m] per pair; 0 disables it
-  double reference_stiffness = 0.0;   // k_ref [N/m]: k_t and eta_n are those of a pair of this stiffness
-                                      // (each pair's scaled by k_pair / k_ref); 0: the same for every pair
+  double reference_stiffness = 0.0;   // k_ref [N/m]: eta_n is that of a pair of this stiffness (each
+                                      // pair's scaled by k_pair / k_ref); 0: the same eta_n for every pair
 };
 
 // The potential force of one tet pair, both ways (no friction, no damping).

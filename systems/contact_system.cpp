@@ -217,8 +217,8 @@ void ContactSystem::estimate_stable_step() {
 }
 
 double ContactSystem::damped_step(double dt) const {
-  if (!(law_.reference_stiffness > 0) || !(stable_step_ > 0) || !std::isfinite(stable_step_)) return dt;
-  const double xi = law_.normal_damping / law_.reference_stiffness * dt / (stable_step_ * stable_step_);
+  if (!(stable_step_ > 0) || !std::isfinite(stable_step_)) return dt;
+  const double xi = damping_time() * dt / (stable_step_ * stable_step_);
   return dt * (std::sqrt(1.0 + xi * xi) - xi);
 }
 

@@ -86,6 +86,10 @@ class ContactSystem : public System {
   // ratio is xi = (eta_n / k_n) omega_c^2 / (2 omega) <= (eta_n / k_n) dt / stable_step()^2, and the step
   // is stable for dt (sqrt(1 + xi^2) - xi) (Belytschko, Liu & Moran, Nonlinear Finite Elements, 6.2.5).
   double damped_step(double dt) const;
+  // eta_n / k_n [s]: the contact damping per unit pair stiffness (0 without damping).
+  double damping_time() const {
+    return law_.reference_stiffness > 0 ? law_.normal_damping / law_.reference_stiffness : 0.0;
+  }
   // The contact springs' stiffness on each node's row, K_n [N/m] (estimate_stable_step): of the faces of
   // joints and of the outer faces; with the other side moving too, omega_n^2 <= 2 K_n / m_n. Sized to the
   // node count.

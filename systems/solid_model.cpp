@@ -255,18 +255,15 @@ void SolidModel::summarize(nlohmann::json& summary) const {
   s["fractures"] = {{"tensile", count[1]}, {"shear", count[2]}, {"initial", count[3]}};
   if (contact_) {
     const ContactTotals c = contact_->totals();
-    s["contact"] = {
-        {"bodies", contact_->bodies()},
-        {"candidates", c.candidates},
-        {"pairs", c.pairs},
-        {"touching", c.touching},
-        {"detections", c.detections},
-        {"penalty", contact_->law().penalty},
-        {"buffer", contact_->buffer()},
-        {"stable_dt", contact_->stable_step()},
-        {"damping_time", contact_->law().reference_stiffness > 0
-                             ? contact_->law().normal_damping / contact_->law().reference_stiffness
-                             : 0.0}};
+    s["contact"] = {{"bodies", contact_->bodies()},
+                    {"candidates", c.candidates},
+                    {"pairs", c.pairs},
+                    {"touching", c.touching},
+                    {"detections", c.detections},
+                    {"penalty", contact_->law().penalty},
+                    {"buffer", contact_->buffer()},
+                    {"stable_dt", contact_->stable_step()},
+                    {"damping_time", contact_->damping_time()}};
   }
 }
 

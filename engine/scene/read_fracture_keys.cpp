@@ -38,14 +38,19 @@ FractureMaterialSpec read_fracture_material(MapReader& f, double young) {
   // A joint opens by 2 f_t h / p at its peak (and slips 2 c h / p): below 1e-12 of its size h that is the
   // round-off of the node positions, and the law's scales (1 / opening) overflow. Such a joint breaks by
   // round-off, so the strengths must be at least 5e-13 of the penalty.
-  for (const char* key : {"tensile_strength", "cohesion"}) {
-    const double strength = std::string_view(key) == "cohesion" ? m.cohesion : m.tensile_strength;
-    if (f.ok(key) && f.ok("penalty") && !(strength >= 5e-13 * m.penalty))
+  struct Strength {
+    const char* key;
+    double value;
+    const char* symbol;
+  };
+  for (const Strength& s :
+       {Strength{"tensile_strength", m.tensile_strength, "f_t"}, Strength{"cohesion", m.cohesion, "c"}}) {
+    if (f.ok(s.key) && f.ok("penalty") && !(s.value >= 5e-13 * m.penalty))
       f.error(
-          key,
+          s.key,
           fmt::format("at least 5e-13 x the penalty ({:.3g} Pa), so that a joint's peak opening 2 {} h / p "
                       "is above the round-off of node positions",
-                      5e-13 * m.penalty, std::string_view(key) == "cohesion" ? "c" : "f_t"),
+                      5e-13 * m.penalty, s.symbol),
           "lower the penalty or raise the strength; for a material that should not hold, leave its tets out "
           "of solid.fracture's regions");
   }

@@ -12,6 +12,7 @@ constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 constexpr std::array<std::string_view, 2> kSchemes{"backward_euler", "crank_nicolson"};
 constexpr std::array<std::string_view, 2> kCouplings{"schur_gmres", "projection"};
 constexpr std::array<std::string_view, 2> kOnFailure{"stop", "continue"};
+constexpr std::array<std::string_view, 2> kSubscales{"quasi_static", "dynamic"};
 
 // Keys that apply to one boundary type only are forbidden for the others (as in the solid section).
 FluidBoundarySpec read_boundary(MapReader& b) {
@@ -71,6 +72,7 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
   }
   f.convection = sec.boolean("convection", true);
   f.supg = sec.boolean("supg", true);
+  f.dynamic_subscale = sec.choice("pressure_subscale", kSubscales, 0) == 1;
   f.coupling = static_cast<FluidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
   f.picard_max_iterations = static_cast<int>(sec.integer("picard_max_iterations", IntRule{1, 1000}, 20));
   f.picard_tolerance = sec.real("picard_tolerance", positive(""), 1e-6);

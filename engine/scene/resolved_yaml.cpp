@@ -275,6 +275,7 @@ void emit_fluid(Lines& o, const FluidSpec& f) {
   o.line(1, "theta", yaml_real(f.theta));
   o.line(1, "convection", f.convection ? "true" : "false");
   o.line(1, "supg", f.supg ? "true" : "false");
+  o.line(1, "pressure_subscale", f.dynamic_subscale ? "dynamic" : "quasi_static");
   o.line(1, "coupling", f.coupling == FluidSpec::Coupling::schur_gmres ? "schur_gmres" : "projection");
   o.line(1, "picard_max_iterations", std::to_string(f.picard_max_iterations));
   o.line(1, "picard_tolerance", yaml_real(f.picard_tolerance));

@@ -251,6 +251,7 @@ struct FluidSpec {
   double theta = 1.0;                   // 1 backward Euler, 0.5 Crank-Nicolson
   bool convection = true;
   bool supg = true;
+  bool dynamic_subscale = false;  // pressure_subscale: dynamic (kernels/fluid_subscale.hpp)
   Coupling coupling = Coupling::schur_gmres;
   int picard_max_iterations = 20;
   double picard_tolerance = 1e-6;

@@ -65,6 +65,7 @@ fluid::FluidSettings settings_for(const FluidSpec& spec) {
   s.theta = spec.theta;
   s.convection = spec.convection;
   s.supg = spec.supg;
+  s.dynamic_subscale = spec.dynamic_subscale;
   s.coupling = static_cast<fluid::PressureCoupling>(spec.coupling);
   s.picard_max_iterations = spec.picard_max_iterations;
   s.picard_tol = spec.picard_tolerance;
@@ -108,6 +109,7 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
   Table& tets = store_.add_table(fluid::tet_table);
   tets.add<int32_t>("nodes", 4).indexes(IndexTarget::rows_of(fluid::node_table));
   tets.add<double>("pressure_matrix_coefficient", 1);
+  tets.add<double>("pressure_subscale", 3);
   if (spec.adapt) {
     Table& faces = store_.add_table(fluid::boundary_table);
     faces.add<int32_t>("nodes", 3).indexes(IndexTarget::rows_of(fluid::node_table));
@@ -255,6 +257,22 @@ std::optional<std::string> FluidModel::check_health(const StepContext& after) {
     double c[3] = {0, 0, 0};
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d) c[d] += 0.25 * x[3 * static_cast<size_t>(conn[4 * worst + a]) + d];
+    if (!r.linear_converged)
+      return fmt::format(
+          "the fluid's linear solve did not converge in step {} (t = {:.6g} s), Picard iteration {}: {}. A "
+          "step whose solve stops at its cap is not a solution, however small its Picard change. Likely "
+          "cause: an ill-conditioned step (extreme viscosity, density or absorption contrasts for this dt "
+          "and mesh); with fluid.pressure_subscale: quasi_static, a low-viscosity fluid near rest (the "
+          "stabilisation's tau = h^2 / (4 mu) far above dt / rho). What to change: fluid.pressure_subscale: "
+          "dynamic (bounds tau by dt / rho, same steady state), raise fluid.schur_max_iterations or "
+          "fluid.schur_tolerance, lower fluid.dt, or refine the mesh where the contrast is.",
+          after.step, after.time, r.picard_iterations,
+          r.momentum_failures > 0
+              ? fmt::format("{} momentum (BiCGSTAB) solves stopped at {} iterations", r.momentum_failures,
+                            spec_.velocity_max_iterations)
+              : fmt::format("FGMRES on the pressure Schur complement stopped at its cap "
+                            "(fluid.schur_max_iterations = {}) with residual {:.3g}, {:.3g} x its target",
+                            spec_.schur_max_iterations, r.schur_residual, r.schur_residual / r.schur_target));
     return fmt::format(
         "the fluid's Picard iteration did not converge in step {} (t = {:.6g} s): after {} iterations "
         "(fluid.picard_max_iterations) the relative changes are {:.3g} (velocity) and {:.3g} (pressure), "
@@ -363,10 +381,10 @@ void FluidModel::restored(const StepContext& at) {
   }
   const Table& nodes = store_.table(fluid::node_table);
   const bool previous = store_.table(fluid::step_table).span<const double>("has_previous")[0] != 0.0;
-  solver_->restore_state(
-      at.time, nodes.span<double>("velocity"), nodes.span<double>("pressure"),
-      store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient"),
-      previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{});
+  solver_->restore_state(at.time, nodes.span<double>("velocity"), nodes.span<double>("pressure"),
+                         store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient"),
+                         previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{},
+                         store_.table(fluid::tet_table).span<const double>("pressure_subscale"));
   step_->restore_report();
 }
 

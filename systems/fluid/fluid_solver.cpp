@@ -121,6 +121,8 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   continuity_weight_.assign(nt, 1.0);
   volume_source_.assign(nt, 0.0);
   for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
+  subscale_.assign(3 * nt, 0.0);
+  subscale_rhs_.assign(nn, 0.0);
 
   momentum_ = p1_pattern(static_cast<int32_t>(nn), tet_nodes_);
   pressure_mat_ = momentum_;
@@ -204,8 +206,13 @@ void FluidSolver::update_cell_coefficients() {
                        : 0.0;
     // Pressure stabilisation (orthogonal-subscale / gradient-projection form, Codina):
     //   tau_p = alpha / (4 mu/h^2 + 2 rho |w|/h + sigma)  [m^3 s/kg].
+    // Dynamic: tau_t = 1 / (rho/dt + 1/tau_p) (also where tau_p is unbounded: an inviscid fluid at rest).
     const double denom = 4.0 * s.mu / (h * h) + (s.convection ? 2.0 * s.rho * speed / h : 0.0) + sigma_[t];
-    tau_p_[t] = denom > 0.0 ? s.pressure_stabilisation / denom : 0.0;
+    const double alpha = s.pressure_stabilisation;
+    if (!s.dynamic_subscale)
+      tau_p_[t] = denom > 0.0 ? alpha / denom : 0.0;
+    else
+      tau_p_[t] = alpha > 0.0 ? alpha / (alpha * rdt + denom) : 0.0;
     c_cell_[t] = 1.0 / (rdt + sigma_[t]);
     pcoef_[t] = c_cell_[t] + tau_p_[t];
   }
@@ -270,9 +277,14 @@ int FluidSolver::solve_momentum(std::span<const double> rhs3, std::span<double> 
     const KrylovResult kr = bicgstab_.solve(comp_[d], rhs_c_, x_c_, settings_.velocity_rel_tol, 1e-300,
                                             settings_.velocity_max_iterations, homogeneous ? 0.0 : forcing);
     its += kr.iterations;
+    if (!kr.converged) ++momentum_failures_;
     for (size_t n = 0; n < nn; ++n) u3[3 * n + d] = x_c_[n];
   }
   return its;
+}
+
+kernels::PressureSubscaleArgs FluidSolver::subscale_args() const {
+  return {tet_nodes_, volume_, grad_, tau_p_, settings_.rho / settings_.dt};
 }
 
 // The continuity residual is -sum_t (V/4)(div u_t - s_t) per node: the immersed solid's dilatation s
@@ -339,7 +351,9 @@ FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std:
   schur_reference_ = std::max(schur_reference_, beta);
   const double target = std::max({settings_.schur_rel_tol * schur_reference_, schur_floor_, 1e-300});
   st.residual = beta;
-  if (beta <= target) return st;
+  st.target = target;
+  st.converged = beta <= target;
+  if (st.converged) return st;
   std::copy(b.begin(), b.end(), krylov_v_.begin());  // r = b - S*0
   while (st.iterations < settings_.schur_max_iterations) {
     double* v0 = krylov_v_.data();
@@ -403,6 +417,7 @@ FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std:
     if (beta <= target) break;
   }
   st.converged = st.residual <= target;
+  st.target = target;
   return st;
 }
 
@@ -421,6 +436,7 @@ FluidStepReport FluidSolver::step() {
   const size_t nn = node_count(), nt = volume_.size();
   const double t_new = time_ + s.dt;
   FluidStepReport rep;
+  const int momentum_failures_at_start = momentum_failures_;
   schur_reference_ = 0.0;
   apply_velocity_bc(t_new);
   schur_floor_ = 1e-12 * velocity_scale() * residual_area_;
@@ -468,7 +484,11 @@ FluidStepReport FluidSolver::step() {
         assemble_pressure_matrix();
         ++rep.amg_setups;
       }
+      std::fill(subscale_rhs_.begin(), subscale_rhs_.end(), 0.0);
+      if (s.dynamic_subscale) kernels::pressure_subscale_rhs(subscale_args(), subscale_, subscale_rhs_);
     }
+    const int momentum_failures_before = momentum_failures_;
+    bool schur_converged = true;
     // 1. Momentum.
     kernels::FluidMomentumArgs ma;
     ma.rho = s.rho;
@@ -498,6 +518,7 @@ FluidStepReport FluidSolver::step() {
          body_force_fn_ && weighted_ ? std::span<const double>(body_force_) : std::span<const double>{}},
         cont_res_);
     add_dilatation(cont_res_);
+    for (size_t n = 0; n < nn; ++n) cont_res_[n] += subscale_rhs_[n];
     if (s.coupling == PressureCoupling::schur_gmres) {
       double sum = 0.0;
       for (size_t n = 0; n < nn; ++n) {
@@ -511,6 +532,11 @@ FluidStepReport FluidSolver::step() {
       rep.velocity_iterations += st.velocity_iterations;
       rep.pressure_iterations += st.pressure_iterations;
       rep.schur_iterations += st.iterations;
+      schur_converged = st.converged;
+      if (!st.converged) {
+        rep.schur_residual = st.residual;
+        rep.schur_target = st.target;
+      }
       // u = u* + A^-1 (-G delta): one more homogeneous momentum solve.
       schur_velocity(phi_, corr_, rep.velocity_iterations);
       for (size_t i = 0; i < 3 * nn; ++i) u_[i] = u_star_[i] + corr_[i];
@@ -570,11 +596,15 @@ FluidStepReport FluidSolver::step() {
                    "  picard %d du %.3e dp %.3e umax %.3e pmax %.3e vits %d pits %d schur %d setups %d\n", k,
                    rep.velocity_change, rep.pressure_change, umax, max_abs(p_), rep.velocity_iterations,
                    rep.pressure_iterations, rep.schur_iterations, rep.amg_setups);
-    if (rep.velocity_change <= s.picard_tol && rep.pressure_change <= s.picard_tol) {
+    rep.linear_converged = schur_converged && momentum_failures_ == momentum_failures_before;
+    if (rep.velocity_change <= s.picard_tol && rep.pressure_change <= s.picard_tol && rep.linear_converged) {
       rep.converged = true;
       break;
     }
   }
+  rep.momentum_failures = momentum_failures_ - momentum_failures_at_start;
+  // The subscale at t^{n+1} from the final p and its projected gradient (xi_ is that of p_).
+  if (s.dynamic_subscale) kernels::pressure_subscale_update(subscale_args(), p_, xi_, subscale_);
   // Diagnostics of u^{n+1}.
   kernels::p1_divergence(tet_nodes_, grad_, u_, div_);
   double l2 = 0.0;
@@ -595,7 +625,8 @@ FluidStepReport FluidSolver::step() {
 
 void FluidSolver::restore_state(double t, std::span<const double> u, std::span<const double> p,
                                 std::span<const double> pressure_matrix_coefficients,
-                                std::span<const double> previous_velocity) {
+                                std::span<const double> previous_velocity,
+                                std::span<const double> pressure_subscale) {
   if (u.size() != u_.size() || p.size() != p_.size() || pressure_matrix_coefficients.size() != pcoef_.size())
     throw std::invalid_argument("FluidSolver::restore_state: sizes do not match the mesh");
   time_ = t;
@@ -607,6 +638,12 @@ void FluidSolver::restore_state(double t, std::span<const double> u, std::span<c
       throw std::invalid_argument("FluidSolver::restore_state: previous velocity size does not match");
     std::copy(previous_velocity.begin(), previous_velocity.end(), u_old_.begin());
   }
+  if (!pressure_subscale.empty() && pressure_subscale.size() != subscale_.size())
+    throw std::invalid_argument("FluidSolver::restore_state: pressure subscale size does not match");
+  if (pressure_subscale.empty())
+    std::fill(subscale_.begin(), subscale_.end(), 0.0);
+  else
+    std::copy(pressure_subscale.begin(), pressure_subscale.end(), subscale_.begin());
   apply_velocity_bc(time_);
   bool assembled = false;
   for (double c : pressure_matrix_coefficients) assembled = assembled || c != 0.0;

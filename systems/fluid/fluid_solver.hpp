@@ -27,6 +27,7 @@
 #include "engine/linear/hypre_pcg.hpp"
 #include "engine/linear/krylov.hpp"
 #include "engine/mesh/tet_mesh.hpp"
+#include "kernels/fluid_subscale.hpp"
 #include "systems/fluid/fluid_assembly.hpp"
 
 namespace rift::fluid {
@@ -65,7 +66,12 @@ struct FluidSettings {
   bool convection = true;
   bool supg = true;                   // streamline diffusion on the convection
   double pressure_stabilisation = 1;  // factor on tau_p (0 = none: unstable for P1-P1 at steady state)
-  double viscous_correction = 1.0;    // chi above, in the Schur preconditioner
+  // The pressure subscale is dynamic (kernels/fluid_subscale.hpp): tau_t = 1 / (rho/dt + 1/tau_p) in the
+  // step, and the subscale's memory carried from step to step; the steady state is that of tau_p. false:
+  // quasi-static (tau_p in the step), whose Schur complement the preconditioner cannot reach when
+  // tau_p >> dt / rho (a low-viscosity fluid at rest).
+  bool dynamic_subscale = false;
+  double viscous_correction = 1.0;             // chi above, in the Schur preconditioner
   double projection_viscous_correction = 0.0;  // chi as a Richardson step (projection): > 0.5 diverged
   int picard_max_iterations = 20;
   // First Picard iterate (advecting velocity and Krylov initial guess) extrapolated in time,
@@ -100,7 +106,13 @@ struct FluidStepReport {
   int velocity_iterations = 0;  // BiCGSTAB, summed over components and Picard iterations
   int pressure_iterations = 0;  // PCG, summed over Picard iterations
   int amg_setups = 0;
-  int schur_iterations = 0;     // FGMRES, summed over Picard iterations (schur_gmres)
+  int schur_iterations = 0;  // FGMRES, summed over Picard iterations (schur_gmres)
+  // The last Picard iteration's linear solves met their tolerances (FGMRES on the Schur complement,
+  // BiCGSTAB on momentum). A step is converged only if they did: a solve stopped at its iteration cap
+  // makes a small Picard change that is not convergence.
+  bool linear_converged = true;
+  double schur_residual = 0.0, schur_target = 0.0;  // of the last Schur solve that missed its target
+  int momentum_failures = 0;    // BiCGSTAB solves stopped at velocity_max_iterations, over the step
   double divergence_l2 = 0.0;   // sqrt(sum_t V_t (div u_t)^2) of u^{n+1}
   double divergence_max = 0.0;  // max_t |div u_t|
   double cfl = 0.0;             // max_t |u_t| dt / h_t, h_t = longest edge
@@ -150,9 +162,12 @@ class FluidSolver {
   std::span<const double> pressure_matrix_coefficients() const { return pcoef_matrix_; }
   // With picard_extrapolate the next step also depends on u^{n-1}: previous_velocity() (valid when
   // has_previous()), restored by passing it (empty: none, as after set_velocity).
+  // With dynamic_subscale the next step also depends on the pressure subscale (3 per tet; empty: zero).
   void restore_state(double t, std::span<const double> u, std::span<const double> p,
                      std::span<const double> pressure_matrix_coefficients,
-                     std::span<const double> previous_velocity = {});
+                     std::span<const double> previous_velocity = {},
+                     std::span<const double> pressure_subscale = {});
+  std::span<const double> pressure_subscale() const { return subscale_; }
   std::span<const double> previous_velocity() const { return u_old_; }
   bool has_previous() const { return have_previous_; }
 
@@ -168,12 +183,13 @@ class FluidSolver {
  private:
   struct SchurStats {
     int iterations = 0, velocity_iterations = 0, pressure_iterations = 0;
-    double residual = 0.0;
+    double residual = 0.0, target = 0.0;
     bool converged = false;
   };
   void build_component_matrices();
   int solve_momentum(std::span<const double> rhs3, std::span<double> u3, bool homogeneous,
                      double forcing = 0.0);
+  kernels::PressureSubscaleArgs subscale_args() const;
   void add_dilatation(std::span<double> residual) const;
   void schur_velocity(std::span<const double> v, std::span<double> u_v, int& velocity_iterations);
   void schur_apply(std::span<const double> v, std::span<double> sv, SchurStats& st);
@@ -210,8 +226,10 @@ class FluidSolver {
   std::vector<double> sigma_, target_, source_, dilatation_, continuity_weight_, volume_source_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
-  bool weighted_ = false;              // some continuity weight is below 1
-  std::vector<double> relative_flux_;  // (1 - w) c per tet, while weighted_
+  std::vector<double> subscale_, subscale_rhs_;  // u' (3 per tet) and its explicit continuity term
+  int momentum_failures_ = 0;                    // BiCGSTAB solves that missed their tolerance
+  bool weighted_ = false;                        // some continuity weight is below 1
+  std::vector<double> relative_flux_;            // (1 - w) c per tet, while weighted_
   // Linear algebra.
   CsrMatrix momentum_, pressure_mat_;
   std::array<CsrMatrix, 3> comp_;         // momentum with the Dirichlet rows of each component

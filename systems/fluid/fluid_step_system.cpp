@@ -11,7 +11,8 @@ Access FluidStepSystem::access() const {
   Access a;
   a.writes = {col(fluid::node_table, "velocity"), col(fluid::node_table, "pressure"),
               col(fluid::node_table, "previous_velocity"),
-              col(fluid::tet_table, "pressure_matrix_coefficient")};
+              col(fluid::tet_table, "pressure_matrix_coefficient"),
+              col(fluid::tet_table, "pressure_subscale")};
   for (const char* c : fluid::step_columns) a.writes.push_back(col(fluid::step_table, c));
   a.writes.push_back(col(fluid::step_table, "has_previous"));
   a.reads = coupling_reads_;
@@ -42,8 +43,10 @@ void FluidStepSystem::publish() {
   const auto u_prev = solver_.previous_velocity();
   std::copy(u_prev.begin(), u_prev.end(), nodes.span<double>("previous_velocity").begin());
   store_.table(fluid::step_table).span<double>("has_previous")[0] = solver_.has_previous() ? 1.0 : 0.0;
-  std::copy(c.begin(), c.end(),
-            store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient").begin());
+  Table& tets = store_.table(fluid::tet_table);
+  std::copy(c.begin(), c.end(), tets.span<double>("pressure_matrix_coefficient").begin());
+  const auto sub = solver_.pressure_subscale();
+  std::copy(sub.begin(), sub.end(), tets.span<double>("pressure_subscale").begin());
   Table& step = store_.table(fluid::step_table);
   const fluid::FluidStepReport& r = last_;
   const double values[] = {static_cast<double>(r.picard_iterations),

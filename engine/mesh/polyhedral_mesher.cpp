@@ -15,8 +15,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <numeric>
+#include <random>
 #include <unordered_map>
 
 #include "engine/core/error.hpp"
@@ -42,13 +45,58 @@ constexpr double kExudeBoundDeg = 20.0;
 // Exudation stops after this many pump steps per tet at the latest (see CappedExudeVisitor).
 constexpr size_t kExudeStepsPerCell = 2;
 
-// Mesh_3 sizing field: factor * h(p). Mesh_3 calls it with (point, dimension, index).
+// The seed's jitter of the sizing field: j(p) in [1 - kJitter, 1], a smooth field of three plane waves
+// with random directions and phases (wavelength a third of the domain's diagonal). Delaunay refinement
+// draws no random numbers where features seed it (the protecting balls), so without it every seed gave
+// the same mesh; with it each seed gives a different mesh of the same sizing contract (h only lowered).
+// Seed 1 is the unjittered mesh.
+constexpr double kJitter = 0.1;
+struct SizeJitter {
+  std::array<Vec3, 3> k{};
+  std::array<double, 3> phase{};
+  bool on = false;
+  double operator()(const Vec3& p) const {
+    if (!on) return 1.0;
+    double m = 0.0;
+    for (int i = 0; i < 3; ++i) m += std::sin(k[i][0] * p[0] + k[i][1] * p[1] + k[i][2] * p[2] + phase[i]);
+    return 1.0 - 0.5 * kJitter * (1.0 + m / 3.0);
+  }
+};
+
+// Uniform in [0, 1) from the 53 high bits of a 64-bit Mersenne twister (fully specified by the standard,
+// unlike the distributions): the same jitter on every platform.
+double unit_random(std::mt19937_64& g) {
+  return static_cast<double>(g() >> 11) * 0x1.0p-53;
+}
+
+SizeJitter size_jitter(const std::vector<PolyhedralSurface>& patches, uint32_t seed) {
+  SizeJitter j;
+  if (seed == 1) return j;
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const auto& s : patches)
+    for (const Vec3& p : s.points)
+      for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], p[d]), hi[d] = std::max(hi[d], p[d]);
+  const double diagonal = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  const double wavenumber = 2.0 * M_PI / (diagonal / 3.0);
+  std::mt19937_64 g(seed);
+  for (int i = 0; i < 3; ++i) {
+    const double z = 2.0 * unit_random(g) - 1.0, a = 2.0 * M_PI * unit_random(g), r = std::sqrt(1.0 - z * z);
+    j.k[i] = {wavenumber * r * std::cos(a), wavenumber * r * std::sin(a), wavenumber * z};
+    j.phase[i] = 2.0 * M_PI * unit_random(g);
+  }
+  j.on = true;
+  return j;
+}
+
+// Mesh_3 sizing field: factor * h(p) * jitter(p). Mesh_3 calls it with (point, dimension, index).
 struct SizingField {
   const std::function<double(const Vec3&)>* size;
   double factor;
+  const SizeJitter* jitter;
   template <class Index>
   K::FT operator()(const K::Point_3& p, int, const Index&) const {
-    return factor * (*size)({p.x(), p.y(), p.z()});
+    const Vec3 q{p.x(), p.y(), p.z()};
+    return factor * (*size)(q) * (*jitter)(q);
   }
 };
 
@@ -133,7 +181,8 @@ C3t3 run_mesh_3(const PolyhedralMeshInput& in, Mesh3Stats& stats) {
   Domain domain(patches.begin(), patches.end(), sides.begin(), sides.end(), &domain_random);
   domain.detect_features(in.feature_angle_deg);
 
-  const SizingField size{&in.size, 1.0}, distance{&in.size, 0.1};
+  const SizeJitter jitter = size_jitter(in.patches, in.seed);
+  const SizingField size{&in.size, 1.0, &jitter}, distance{&in.size, 0.1, &jitter};
   namespace p = CGAL::parameters;
   const Criteria criteria(p::edge_size = size, p::facet_angle = 25.0, p::facet_size = size,
                           p::facet_distance = distance,

@@ -23,6 +23,10 @@
 // Determinism: the same input (seed included) gives the same arrays, bit for bit. Mesh_3 runs
 // sequentially, its random generators (the domain's and CGAL's default one) are seeded from `seed`,
 // and the optimisation steps run without the time limits that would make them depend on machine speed.
+// Those generators alone left the mesh unchanged (the refinement is seeded by the protected edges, not
+// by random points), so a seed other than 1 also lowers h(p) by a seeded smooth factor in [0.9, 1]
+// (polyhedral_mesher.cpp, SizeJitter): another mesh of the same sizing contract, for mesh-dependence
+// studies. Seed 1 is the unjittered mesh.
 //
 // Output: nodes, positively oriented tets (region "domain"), boundary triangles with outward normals,
 // grouped by the surface the caller's classifier assigns (stable order within a surface).

@@ -75,7 +75,7 @@ struct MeshGenerateSpec {
   double size_min = 0.0;           // element size at the features (notch faces, loading arcs) [m]
   double size_max = 0.0;           // element size far from them [m]
   double grading = 0.5;            // growth of element size per unit distance from a feature [-]
-  uint32_t seed = 1;               // generator seed: the same seed gives the same mesh
+  uint32_t seed = 1;               // same seed, same mesh; another seed, another mesh of the same sizing
   // box only, instead of size_min/size_max: a structured Kuhn lattice of nx x ny x nz cells (6 tets each)
   std::optional<std::array<int, 3>> cells;
   // box only, instead of cells and sizing: a Kuhn lattice graded from a fine box outward (graded_axis.hpp)

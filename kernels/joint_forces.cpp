@@ -152,7 +152,7 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
     write_optional(a.slip, j, mean_s);
     if (failed >= rule.fail_count) {
       joint_detail::record_break(
-          a, j, normal_sum >= shear_sum ? JointBreakMode::tensile : JointBreakMode::shear, status);
+          a, j, normal_sum >= shear_sum ? JointBreakMode::tensile : JointBreakMode::shear, energy, status);
       write_zero_force(a, j);
       write_optional(a.damage, j, 1.0);
       continue;

@@ -46,6 +46,10 @@ enum class JointBreakMode : uint8_t { intact = 0, tensile = 1, shear = 2 };
 struct JointBreak {
   int32_t joint;
   JointBreakMode mode;
+  // What the joint stored at the instant it broke [J]: recoverable energy that leaves the joint's books
+  // with its forces but was not dissipated by fracture (in mode II under compression, 1/2 sigma_n o of the
+  // compression branch, which the contact or nothing takes over).
+  double released_energy = 0.0;
 };
 
 struct JointArgs {

@@ -268,13 +268,15 @@ void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointS
     simd::store1(simd::keep(intact, t.energy), a.stored_energy.data() + j0, count);
   const int broke = lanes(breaks) & real;
   if (broke == 0) return;
-  alignas(32) double normal[4], shear[4];
+  alignas(32) double normal[4], shear[4], energy[4];
   _mm256_store_pd(normal, t.normal);
   _mm256_store_pd(shear, t.shear);
+  _mm256_store_pd(energy, t.energy);
   for (int l = 0; l < count; ++l)
     if (broke & (1 << l))
-      joint_detail::record_break(
-          a, joint[l], normal[l] >= shear[l] ? JointBreakMode::tensile : JointBreakMode::shear, status);
+      joint_detail::record_break(a, joint[l],
+                                 normal[l] >= shear[l] ? JointBreakMode::tensile : JointBreakMode::shear,
+                                 energy[l], status);
 }
 
 void scalar_group(const JointArgs& a, const size_t joint[4], int count, JointStatus& status) {

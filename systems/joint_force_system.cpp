@@ -27,10 +27,11 @@ Access JointForceSystem::access() const {
   using solid::col;
   const char* J = solid::joint_table;
   const char* V = solid::event_table;
-  std::vector<std::string> writes{
-      col(J, "corner_force"), col(J, "d_max"),         col(J, "broken"), col(J, "opening"), col(J, "slip"),
-      col(J, "damage"),       col(J, "stored_energy"), col(V, "step"),   col(V, "time"),    col(V, "joint"),
-      col(V, "mode"),         col(V, "centroid"),      col(V, "normal"), col(V, "area")};
+  std::vector<std::string> writes{col(J, "corner_force"),  col(J, "d_max"), col(J, "broken"),
+                                  col(J, "opening"),       col(J, "slip"),  col(J, "damage"),
+                                  col(J, "stored_energy"), col(V, "step"),  col(V, "time"),
+                                  col(V, "joint"),         col(V, "mode"),  col(V, "centroid"),
+                                  col(V, "normal"),        col(V, "area"),  col(V, "released_energy")};
   if (store_.table(J).has("residual_anchor")) writes.push_back(col(J, "residual_anchor"));
   return {{col(solid::node_table, "x"), col(J, "nodes"), col(J, "material"), col(J, "initial_offset")},
           writes,
@@ -86,6 +87,7 @@ void JointForceSystem::record_events(const StepContext& ctx, size_t count) {
   auto centroid = events.span<double>("centroid");
   auto normal = events.span<double>("normal");
   auto area = events.span<double>("area");
+  auto released = events.span<double>("released_energy");
   for (size_t k = 0; k < count; ++k) {
     const size_t row = first + k;
     const int32_t j = breaks_[k].joint;
@@ -106,6 +108,7 @@ void JointForceSystem::record_events(const StepContext& ctx, size_t count) {
       normal[3 * row + c] = len > 0 ? n[c] / len : 0.0;
     }
     area[row] = 0.5 * len;
+    released[row] = breaks_[k].released_energy;
   }
 }
 

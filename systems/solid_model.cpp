@@ -169,8 +169,8 @@ std::optional<std::string> SolidModel::check_health(const StepContext& after) {
 std::optional<std::string> SolidModel::check_energy(const StepContext& after) {
   const SolidEnergies e = energies();
   const double scale = std::abs(e.external_work) + e.kinetic + std::abs(e.elastic) +
-                       std::abs(e.joint_stored) + e.damping + std::abs(e.fracture) + e.contact_stored +
-                       e.friction + e.contact_damping;
+                       std::abs(e.joint_stored) + e.damping + std::abs(e.fracture) + e.break_release +
+                       e.contact_stored + e.friction + e.contact_damping;
   largest_energy_ = std::max(largest_energy_, scale);
   const double error = e.balance_error();
   const double tolerance = 0.1 * largest_energy_ + energy_floor_;
@@ -210,7 +210,8 @@ std::optional<std::string> SolidModel::check_energy(const StepContext& after) {
   std::ostringstream why;
   why << "energy is not conserved at step " << after.step << ", t = " << after.time << " s: external work "
       << e.external_work << " J, but kinetic " << e.kinetic << " + elastic " << e.elastic << " + joints "
-      << e.joint_stored << " + damping " << e.damping << " + fracture " << e.fracture << " + contact "
+      << e.joint_stored << " + damping " << e.damping << " + fracture " << e.fracture
+      << " + released at breaks " << e.break_release << " + contact "
       << e.contact_stored + e.friction + e.contact_damping << " J (error " << error
       << " J). Energy growing without work to feed it is a numerical instability. "
       << "Likely cause: a step above the stable one (" << stable_dt_
@@ -245,6 +246,7 @@ void SolidModel::summarize(nlohmann::json& summary) const {
                  {"joint_stored", e.joint_stored},
                  {"damping", e.damping},
                  {"fracture", e.fracture},
+                 {"break_release", e.break_release},
                  {"contact_stored", e.contact_stored},
                  {"friction", e.friction},
                  {"contact_damping", e.contact_damping},

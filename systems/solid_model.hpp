@@ -27,13 +27,17 @@ namespace rift {
 // Energies of the solid at one instant [J]; see docs/architecture.md "Energy balance".
 struct SolidEnergies {
   double kinetic = 0, elastic = 0, joint_stored = 0, damping = 0, fracture = 0, external_work = 0;
+  // What joints stored when they broke (the compression branch's 1/2 sigma_n o in mode II under
+  // compression): it leaves their books with their forces, and is not fracture's; the contact that takes
+  // the faces over starts its own books from the overlap (without contact the model drops it).
+  double break_release = 0;
   // Contact: dissipated by friction and normal damping (from the contact kernel), and stored in the
   // overlaps and friction springs (the rest of what the contact forces took). A contact that puts energy
   // in (an unstable penalty) shows as a negative stored energy, which the energy guard checks.
   double contact_stored = 0, friction = 0, contact_damping = 0;
   double balance_error() const {
-    return external_work - (kinetic + elastic + joint_stored + damping + fracture + contact_stored +
-                            friction + contact_damping);
+    return external_work - (kinetic + elastic + joint_stored + damping + fracture + break_release +
+                            contact_stored + friction + contact_damping);
   }
 };
 

@@ -138,6 +138,7 @@ void SolidModel::create_bookkeeping_tables() {
   events.add<double>("centroid", 3);
   events.add<double>("normal", 3);
   events.add<double>("area");
+  events.add<double>("released_energy");
   Table& energy = store_.add_table(solid::energy_table);
   for (const char* c : {"external_work", "tet_work", "joint_work", "damping", "joint_energy0", "kinetic0"})
     energy.add<double>(c);

@@ -118,8 +118,11 @@ SolidEnergies SolidModel::energies() const {
     double stored = 0.0;
     for (double w : store_.table(solid::joint_table).span<const double>("stored_energy")) stored += w;
     e.joint_stored = stored - book.span<const double>("joint_energy0")[0];
-    // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took.
-    e.fracture = -book.span<const double>("joint_work")[0] - e.joint_stored;
+    // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took,
+    // less what broken joints still held when they broke (summed in the log's order: deterministic).
+    for (double w : store_.table(solid::event_table).span<const double>("released_energy"))
+      e.break_release += w;
+    e.fracture = -book.span<const double>("joint_work")[0] - e.joint_stored - e.break_release;
   }
   if (contact_) {
     // Stored in the overlaps and the friction springs: what the contact forces took (minus their work)
@@ -140,6 +143,7 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
   row.emplace_back("solid_joint_energy", e.joint_stored);
   row.emplace_back("solid_damping_dissipation", e.damping);
   row.emplace_back("solid_fracture_dissipation", e.fracture);
+  row.emplace_back("solid_break_release", e.break_release);
   row.emplace_back("solid_external_work", e.external_work);
   row.emplace_back("solid_energy_balance_error", e.balance_error());
   row.emplace_back("solid_broken_joints", static_cast<double>(broken_joint_count()));

@@ -32,7 +32,8 @@ inline constexpr const char* contact_state_table = "solid_contact_state";
 //            [0, 4 T), then joint corners [4 T, 4 T + 6 J) (corner i of joint j at 4 T + 2 (3 j + i mod 3)
 //            + (i < 3): kernels::ForceSlots's pairs), then loaded-face corners
 // solid_fracture_event: one row per broken joint, in the order they broke: step (i64), time, joint (i32),
-//            mode (u8, as broken), centroid (3), normal (3), area
+//            mode (u8, as broken), centroid (3), normal (3), area, released_energy (what the joint stored
+//            when it broke [J]: handed over, not dissipated; 0 for initial cracks)
 // solid_energy: one row of running integrals [J]: external_work (loads, gravity, prescribed motion),
 //            tet_work and joint_work (work done by those forces on the nodes), damping (viscous
 //            dissipation), joint_energy0 (joint stored energy at t = 0, the in-situ state), kinetic0 (kinetic

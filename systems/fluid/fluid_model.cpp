@@ -251,12 +251,6 @@ std::optional<std::string> FluidModel::check_health(const StepContext& after) {
         "boundary value, body force or initial velocity so large that the arithmetic overflowed. {}",
         bad, after.step, after.time, first, x[3 * first], x[3 * first + 1], x[3 * first + 2], advice);
   if (!r.converged && spec_.on_picard_failure == FluidSpec::OnPicardFailure::stop) {
-    cell_fields();
-    const size_t worst = static_cast<size_t>(std::max_element(cfl_.begin(), cfl_.end()) - cfl_.begin());
-    const auto conn = solver_->tets();
-    double c[3] = {0, 0, 0};
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d) c[d] += 0.25 * x[3 * static_cast<size_t>(conn[4 * worst + a]) + d];
     if (!r.linear_converged)
       return fmt::format(
           "the fluid's linear solve did not converge in step {} (t = {:.6g} s), Picard iteration {}: {}. A "
@@ -273,6 +267,12 @@ std::optional<std::string> FluidModel::check_health(const StepContext& after) {
               : fmt::format("FGMRES on the pressure Schur complement stopped at its cap "
                             "(fluid.schur_max_iterations = {}) with residual {:.3g}, {:.3g} x its target",
                             spec_.schur_max_iterations, r.schur_residual, r.schur_residual / r.schur_target));
+    cell_fields();
+    const size_t worst = static_cast<size_t>(std::max_element(cfl_.begin(), cfl_.end()) - cfl_.begin());
+    const auto conn = solver_->tets();
+    double c[3] = {0, 0, 0};
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d) c[d] += 0.25 * x[3 * static_cast<size_t>(conn[4 * worst + a]) + d];
     return fmt::format(
         "the fluid's Picard iteration did not converge in step {} (t = {:.6g} s): after {} iterations "
         "(fluid.picard_max_iterations) the relative changes are {:.3g} (velocity) and {:.3g} (pressure), "

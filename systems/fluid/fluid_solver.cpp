@@ -417,7 +417,6 @@ FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std:
     if (beta <= target) break;
   }
   st.converged = st.residual <= target;
-  st.target = target;
   return st;
 }
 
@@ -484,8 +483,10 @@ FluidStepReport FluidSolver::step() {
         assemble_pressure_matrix();
         ++rep.amg_setups;
       }
-      std::fill(subscale_rhs_.begin(), subscale_rhs_.end(), 0.0);
-      if (s.dynamic_subscale) kernels::pressure_subscale_rhs(subscale_args(), subscale_, subscale_rhs_);
+      if (s.dynamic_subscale) {
+        std::fill(subscale_rhs_.begin(), subscale_rhs_.end(), 0.0);
+        kernels::pressure_subscale_rhs(subscale_args(), subscale_, subscale_rhs_);
+      }
     }
     const int momentum_failures_before = momentum_failures_;
     bool schur_converged = true;
@@ -518,7 +519,8 @@ FluidStepReport FluidSolver::step() {
          body_force_fn_ && weighted_ ? std::span<const double>(body_force_) : std::span<const double>{}},
         cont_res_);
     add_dilatation(cont_res_);
-    for (size_t n = 0; n < nn; ++n) cont_res_[n] += subscale_rhs_[n];
+    if (s.dynamic_subscale)
+      for (size_t n = 0; n < nn; ++n) cont_res_[n] += subscale_rhs_[n];
     if (s.coupling == PressureCoupling::schur_gmres) {
       double sum = 0.0;
       for (size_t n = 0; n < nn; ++n) {

@@ -310,9 +310,9 @@ TEST(FluidSolidRun, WaterAtRestConvergesWithTheDynamicSubscaleAndIsReportedWitho
   EXPECT_LT(speed, 1e-9);
   // The subscale is state: a restart inside a window continues bit for bit.
   test::TempDir dir;
-  const Scene moving_water =
-      load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/immersed_block.yaml",
-                 {"fluid.viscosity=1.0e-3", "fluid.pressure_subscale=dynamic", moving()[0], moving()[1]});
+  std::vector<std::string> thrown = moving();
+  thrown.insert(thrown.end(), {"fluid.viscosity=1.0e-3", "fluid.pressure_subscale=dynamic"});
+  const Scene moving_water = block_scene(thrown);
   const RunResult whole = test::run_scene(moving_water, dir.path() / "whole", 1);
   ASSERT_TRUE(whole.completed);
   const auto [first, rest] =

@@ -64,6 +64,38 @@ const int cavity_registered = [] {
   return 0;
 }();
 
+// The cavity against Ghia at Re = 100, 400, 1000 with the default (orthogonal-subscale) convection
+// stabilisation: BM_FluidCavityGhia/Re/n/clustering in %, dt = 0.2, five Picard iterations of full inner
+// solves per step (Picard to 1e-9), to a per-step change below 1e-6 dt or t = 300. The mesh study of
+// docs/validation.md (--benchmark_filter=BM_FluidCavityGhia); suspect_dv is Ghia's misprinted point
+// (tests/validation/ghia1982.hpp), change_per_time what the last step still moved.
+void cavity_ghia(benchmark::State& state) {
+  rift::fluid_test::CavityOptions opt;
+  opt.reynolds = static_cast<int>(state.range(0));
+  const int n = rift::bench::tiny() ? 8 : static_cast<int>(state.range(1));
+  opt.wall_clustering = 0.01 * static_cast<double>(state.range(2));
+  opt.supg = true;
+  opt.picard_iterations = 5;
+  opt.picard_tol = 1e-9;
+  opt.velocity_forcing = 0.0;
+  opt.projection_forcing = 0.0;
+  opt.max_steps = rift::bench::tiny() ? 20 : 1500;
+  rift::fluid_test::CavityResult r;
+  for (auto _ : state) r = rift::fluid_test::run_cavity(n, 0.2, opt);
+  state.counters["max_du"] = r.max_du;
+  state.counters["max_dv"] = r.max_dv;
+  state.counters["suspect_dv"] = r.suspect_dv;
+  state.counters["change_per_time"] = r.change_per_time;
+  state.counters["steps"] = r.steps;
+  state.counters["nodes"] = static_cast<double>(r.nodes);
+  state.counters["march_seconds"] = r.march_seconds;
+}
+BENCHMARK(cavity_ghia)
+    ->Name("BM_FluidCavityGhia")
+    ->ArgsProduct({{100, 400, 1000}, {24, 32, 48}, {0, 50}})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+
 // The default cavity step inside an arena of 1 or 2 threads (the fluid assembly's parallel loops;
 // docs/performance.md "Fluid kernels"): BM_FluidCavityRe100_Threads/n/threads, same counters.
 void cavity_threads(benchmark::State& state) {

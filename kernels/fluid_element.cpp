@@ -156,6 +156,17 @@ inline bool momentum_element(const FluidMomentumArgs& a, size_t t, double* km, d
     }
     for (int d = 0; d < 3; ++d) kr[3 * i + d] = r[d] + 0.25 * v * cell_force[d];
   }
+  if (tau_s > 0.0 && !a.convection_projection.empty()) {
+    double eta[3] = {0.0, 0.0, 0.0};
+    for (int n = 0; n < 4; ++n)
+      for (int d = 0; d < 3; ++d)
+        eta[d] += 0.25 * a.convection_projection[3 * static_cast<size_t>(nodes[n]) + d];
+    for (int i = 0; i < 4; ++i) {
+      const double f =
+          a.rho * tau_s * v * (wbar[0] * g[3 * i] + wbar[1] * g[3 * i + 1] + wbar[2] * g[3 * i + 2]);
+      for (int d = 0; d < 3; ++d) kr[3 * i + d] += f * eta[d];
+    }
+  }
   return true;
 }
 

@@ -7,8 +7,9 @@
 //   stiffness          K_ab = int g_a . g_b    = V g_a . g_b                (rows sum to zero)
 //   convection         C_ab = int N_a (w . g_b) for the P1 field w with nodal values w_c:
 //                           = (V / 20) (sum_c w_c + w_a) . g_b           (int N_a N_c = M_ac)
-//   streamline diff.   S_ab = tau V (wbar . g_a)(wbar . g_b),  wbar = mean of w_c (SUPG without the
-//                           time-derivative and pressure parts of the residual)
+//   streamline diff.   S_ab = tau V (wbar . g_a)(wbar . g_b),  wbar = mean of w_c (with the projection
+//                           below, the orthogonal-subscale convection term:
+//                           kernels/fluid_convection_subscale.hpp)
 //   gradient           G_ab = int N_a g_b      = (V / 4) g_b   (a vector; also the divergence: the weak
 //                           continuity int q div u = sum_b G_ab . u_b)
 // Conventions: coordinates, velocities and vectors are 3 doubles per node (x y z), tets 4 node indices,
@@ -44,6 +45,9 @@ size_t p1_prepare(std::span<const double> x, std::span<const int32_t> tet_nodes,
 // Momentum system of one theta step (one Picard iterate), per unit volume terms:
 //   rho (u - u^n)/dt + theta L(w) u + (1 - theta) L(w) u^n + sigma (u - u_s) + grad p^* = f + s,
 //   L(w) = -mu lap + rho w.grad + streamline diffusion (tau_s = supg_tau[t], 0 = off).
+// With convection_projection eta (3 per node) the streamline term is the orthogonal one: the right-hand side
+// also gains rho tau_s V (wbar . g_a) etabar (etabar the tet's mean of eta), whole at any theta because eta
+// is the projection of w . grad w, w = theta u^k + (1 - theta) u^n.
 // Matrix (same for the three components): rho/dt M + theta (mu K + rho C + S) + sigma Lumped.
 // Right-hand side (3 per node): (rho/dt M - (1-theta)(mu K + rho C + S)) u^n + sigma Lumped u_s
 //   + M f + (V/4) s - G p^*.   The absorption sigma is fully implicit (backward Euler) at any theta.
@@ -51,16 +55,17 @@ size_t p1_prepare(std::span<const double> x, std::span<const int32_t> tet_nodes,
 struct FluidMomentumArgs {
   double rho = 1.0, mu = 1.0, dt = 1.0, theta = 1.0;
   std::span<const int32_t> tet_nodes;
-  std::span<const double> volume, grad;  // from p1_prepare
-  std::span<const int32_t> slot;         // 16 per tet
-  std::span<const double> u_old;         // u^n, 3 per node
-  std::span<const double> advect;        // w, 3 per node
-  std::span<const double> pressure;      // p^*, 1 per node
-  std::span<const double> supg_tau;      // tau_s [s], 1 per tet (S uses rho tau_s); may be empty
-  std::span<const double> sigma;         // absorption [kg/(m^3 s)], 1 per tet; may be empty
-  std::span<const double> target;        // u_s, 3 per tet; may be empty
-  std::span<const double> source;        // s [N/m^3], 3 per tet; may be empty
-  std::span<const double> body_force;    // f [N/m^3], 3 per node (P1 field); may be empty
+  std::span<const double> volume, grad;           // from p1_prepare
+  std::span<const int32_t> slot;                  // 16 per tet
+  std::span<const double> u_old;                  // u^n, 3 per node
+  std::span<const double> advect;                 // w, 3 per node
+  std::span<const double> pressure;               // p^*, 1 per node
+  std::span<const double> supg_tau;               // tau_s [s], 1 per tet (S uses rho tau_s); may be empty
+  std::span<const double> convection_projection;  // eta, 3 per node; empty: plain streamline diffusion
+  std::span<const double> sigma;                  // absorption [kg/(m^3 s)], 1 per tet; may be empty
+  std::span<const double> target;                 // u_s, 3 per tet; may be empty
+  std::span<const double> source;                 // s [N/m^3], 3 per tet; may be empty
+  std::span<const double> body_force;             // f [N/m^3], 3 per node (P1 field); may be empty
   std::span<double> matrix_values;
   std::span<double> rhs;  // 3 per node
 };

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "kernels/fluid_convection_subscale.hpp"
 #include "kernels/fluid_element.hpp"
 
 namespace rift::fluid {
@@ -110,7 +111,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   if (closed_) phi_fixed_[0] = 1;
 
   u_.assign(3 * nn, 0.0);
-  for (auto* v : {&u_old_, &u_star_, &u_iter_, &xi_, &w_, &body_force_, &vel_value_, &rhs_})
+  for (auto* v : {&u_old_, &u_star_, &u_iter_, &xi_, &w_, &eta_, &body_force_, &vel_value_, &rhs_})
     v->assign(3 * nn, 0.0);
   for (auto* v : {&visc_diag_, &p_, &p_iter_, &rhs_c_, &x_c_, &prhs_, &cont_res_, &phi_}) v->assign(nn, 0.0);
   corr_.assign(3 * nn, 0.0);
@@ -199,10 +200,10 @@ void FluidSolver::update_cell_coefficients() {
       for (int d = 0; d < 3; ++d) wbar[d] += 0.25 * w_[3 * static_cast<size_t>(tet_nodes_[4 * t + a]) + d];
     const double speed = std::sqrt(wbar[0] * wbar[0] + wbar[1] * wbar[1] + wbar[2] * wbar[2]);
     const double h = h_[t], nu = s.mu / s.rho;
-    // SUPG: tau_s = [(2/dt)^2 + (2|w|/h)^2 + (4 nu/h^2)^2]^-1/2 [s]  (transient form).
+    // Orthogonal-subscale convection: tau_c free of dt, so a steady state does not depend on it
+    // (kernels/fluid_convection_subscale.hpp).
     supg_tau_[t] = (s.supg && s.convection && speed > 0.0)
-                       ? 1.0 / std::sqrt(4.0 / (s.dt * s.dt) + 4.0 * speed * speed / (h * h) +
-                                         16.0 * nu * nu / (h * h * h * h))
+                       ? kernels::convection_subscale_tau(speed, h, nu, sigma_[t] / s.rho)
                        : 0.0;
     // Pressure stabilisation (orthogonal-subscale / gradient-projection form, Codina):
     //   tau_p = alpha / (4 mu/h^2 + 2 rho |w|/h + sigma)  [m^3 s/kg].
@@ -236,6 +237,13 @@ void FluidSolver::update_cell_coefficients() {
           (g[3 * a] * g[3 * a] + g[3 * a + 1] * g[3 * a + 1] + g[3 * a + 2] * g[3 * a + 2]);
   }
   for (double& d : visc_diag_) d = d > 0.0 ? d : 1e300;
+}
+
+void FluidSolver::project_convective_derivative() {
+  std::fill(eta_.begin(), eta_.end(), 0.0);
+  kernels::convective_derivative_projection(tet_nodes_, volume_, grad_, w_, eta_);
+  for (size_t n = 0; n < node_volume_.size(); ++n)
+    for (int d = 0; d < 3; ++d) eta_[3 * n + d] /= node_volume_[n];
 }
 
 void FluidSolver::assemble_pressure_matrix() {
@@ -472,6 +480,7 @@ FluidStepReport FluidSolver::step() {
     p_iter_ = p_;
     for (size_t i = 0; i < 3 * nn; ++i)
       w_[i] = s.convection ? s.theta * u_[i] + (1.0 - s.theta) * u_old_[i] : 0.0;
+    if (s.supg && s.convection) project_convective_derivative();
     if (k == 0) {
       update_cell_coefficients();
       // The pressure matrix only preconditions the fixed-point iteration (its solution does not depend on
@@ -504,6 +513,7 @@ FluidStepReport FluidSolver::step() {
     ma.advect = w_;
     ma.pressure = p_;
     ma.supg_tau = supg_tau_;
+    if (s.supg && s.convection) ma.convection_projection = eta_;
     ma.sigma = sigma_;
     ma.target = target_;
     ma.source = source_;

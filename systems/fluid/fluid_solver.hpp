@@ -64,7 +64,7 @@ struct FluidSettings {
   double dt = 1e-2;    // time step [s]
   double theta = 1.0;  // 1 backward Euler, 0.5 Crank-Nicolson
   bool convection = true;
-  bool supg = true;                   // streamline diffusion on the convection
+  bool supg = true;                   // orthogonal-subscale stabilisation of the convection
   double pressure_stabilisation = 1;  // factor on tau_p (0 = none: unstable for P1-P1 at steady state)
   // The pressure subscale is dynamic (kernels/fluid_subscale.hpp): tau_t = 1 / (rho/dt + 1/tau_p) in the
   // step, and the subscale's memory carried from step to step; the steady state is that of tau_p. false:
@@ -197,7 +197,8 @@ class FluidSolver {
   SchurStats schur_solve(std::span<const double> b, std::span<double> delta);
   void apply_velocity_bc(double t);
   void assemble_pressure_matrix();
-  double velocity_scale() const;  // for the Picard test and the Schur floor
+  void project_convective_derivative();  // eta_ from w_ (kernels/fluid_convection_subscale.hpp)
+  double velocity_scale() const;         // for the Picard test and the Schur floor
   // The continuity's weights for the element loops: empty while every weight is 1 (the plain equation).
   std::span<const double> continuity_weights() const {
     return weighted_ ? std::span<const double>(continuity_weight_) : std::span<const double>{};
@@ -223,6 +224,7 @@ class FluidSolver {
   std::vector<double> phi_value_;
   // Fields.
   std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
+  std::vector<double> eta_;  // projected convective derivative of w (3 per node)
   std::vector<double> sigma_, target_, source_, dilatation_, continuity_weight_, volume_source_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;

@@ -104,8 +104,12 @@ fluid:
   dt: 0.1
   theta: 0.75
   boundaries:
-    - {surface: ymax, type: velocity, direction: [1, 0, 0]}
+    - {surface: xmin, type: velocity, direction: [1, 0, 0]}
+    - {surface: xmax, type: outflow}
     - {surface: ymin, type: no_slip}
+    - {surface: ymax, type: no_slip}
+    - {surface: zmin, type: free_slip}
+    - {surface: zmax, type: free_slip}
 )";
   SceneLoadResult r = read_scene_text(yaml, "inline", kScenes);
   ASSERT_TRUE(r.errors.empty()) << r.errors[0].format();

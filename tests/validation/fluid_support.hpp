@@ -35,6 +35,7 @@ inline TetMesh jittered_box(const StructuredBoxSpec& spec, double jitter, unsign
 struct SteadyResult {
   int steps = 0;
   fluid::FluidStepReport last;
+  double change = 0.0;  // the last step's max |u^{n+1} - u^n| / max |u|
 };
 
 // Steps until the step's velocity change (relative to max |u|) falls below tol.
@@ -50,6 +51,7 @@ inline SteadyResult march_to_steady(fluid::FluidSolver& s, double tol, int max_s
       um = std::max(um, std::abs(u[i]));
       prev[i] = u[i];
     }
+    r.change = um > 0.0 ? du / um : du;
     if (du <= tol * um) break;
   }
   return r;

@@ -79,7 +79,12 @@ TEST(PaperWedgeCoupled, TheNetworkTakesTheSurroundingFluidsPressureAndItsMass) {
       return;
     }
     ++windows;
-    if (sink != intake) ++mass_mismatches;
+    // Mass between the network and the fluid to 1e-12 relative (the bound): the sink is summed
+    // window by window, the intake is the network's running total, so they may differ in the last bit.
+    if (std::abs(sink - intake) > 1e-12 * std::abs(intake)) {
+      ++mass_mismatches;
+      std::printf("mismatch at %g: sink %.17g intake %.17g\n", sim.time(), sink, intake);
+    }
     // A remesh after the window (fluid.adapt) hands the new mesh the solid's state again, with no intake
     // left for the next window: the sink the step took is then no longer in the solver to read.
     const double remeshes = sim.world().store.table(fluid::step_table).span<const double>("remeshes")[0];

@@ -324,7 +324,7 @@ def render_stress(run, entry, ctx):
     stress = field(run, entry, "solid", "stress")
     pts, cells = points_and_cells(run, entry, "solid", "stress")
     idx, poly = cut_tets(pts[cells], z0)
-    syy = stress[idx, 1] / 1e6  # components xx yy zz xy yz zx
+    syy = stress[idx, 3] / 1e6  # XDMF Tensor6 order: xx xy xz yy yz zz
     poly *= 1e3
     trace = crack_trace(run, entry, z0)
     lo, hi = ctx.stress_range

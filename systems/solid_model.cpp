@@ -36,6 +36,13 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
       prestress.insert(prestress.end(), initial_stress_.begin(), initial_stress_.end());
   loads_ = std::make_unique<SurfaceLoadSystem>(store_, load_conditions_, initial_stress_, crack_face_begin_);
   tet_forces_ = std::make_unique<TetForceSystem>(store_, tet_materials_, std::move(prestress));
+  // The tets' stress is written by the force pass; before the first step (the output at t = 0) the mesh
+  // is undeformed, so it is the in-situ stress exactly.
+  if (spec_.initial_stress) {
+    auto stress = store_.table(solid::tet_table).span<double>("stress");
+    for (size_t e = 0; 6 * e < stress.size(); ++e)
+      for (int c = 0; c < 6; ++c) stress[6 * e + c] = initial_stress_[c];
+  }
   integration_ = std::make_unique<NodeIntegrationSystem>(store_, velocity_conditions_, spec_.gravity,
                                                          spec_.mass_damping);
   if (spec_.fused_tet_pass) fused_tets_ = integration_->fuse_tet_forces(*tet_forces_);

@@ -117,6 +117,7 @@ class SolidModel : public Model {
   std::unique_ptr<NodeIntegrationSystem> integration_;
   // Output scratch, reused between outputs.
   std::vector<double> displacement_, principal_, reaction_;
+  std::vector<double> stress_tensor6_;  // the stress in XDMF's Tensor6 order, for output
 };
 
 }  // namespace rift

@@ -50,6 +50,19 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
   const auto stress = tets.span<double>("stress");
   principal_.resize(3 * tets.size());
   for (size_t e = 0; e < tets.size(); ++e) principal_values(&stress[6 * e], &principal_[3 * e]);
+  // The store keeps xx yy zz xy yz zx (Voigt); XDMF's Tensor6 is xx xy xz yy yz zz, and ParaView's XDMF
+  // Reader expands it to the full tensor in that order: written as stored, its YY would hold sigma_xy.
+  stress_tensor6_.resize(6 * tets.size());
+  for (size_t e = 0; e < tets.size(); ++e) {
+    const double* s = &stress[6 * e];
+    double* o = &stress_tensor6_[6 * e];
+    o[0] = s[0];
+    o[1] = s[3];
+    o[2] = s[5];
+    o[3] = s[1];
+    o[4] = s[4];
+    o[5] = s[2];
+  }
 
   XdmfGrid g{"solid",
              Topology::tetrahedron,
@@ -73,7 +86,7 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
   node_field("velocity", nodes.span<double>("v").data());
   node_field("force", nodes.span<double>("f").data());
   if (contact_) node_field("contact_force", nodes.span<double>("contact_force").data());
-  cell_field(g, "stress", 6, ElementType::f64, stress.data());
+  cell_field(g, "stress", 6, ElementType::f64, stress_tensor6_.data());
   cell_field(g, "principal_stress", 3, ElementType::f64, principal_.data());
   cell_field(g, "energy", 1, ElementType::f64, tets.span<double>("energy").data());
   cell_field(g, "region", 1, ElementType::i32, tets.span<int32_t>("region").data());

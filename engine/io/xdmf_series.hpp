@@ -36,7 +36,8 @@ int nodes_per_cell(Topology topology);
 struct XdmfField {
   std::string name;
   Center center;
-  int components;  // 1 scalar, 3 vector, 6 symmetric tensor (xx yy zz xy yz xz), 9 tensor, else matrix
+  int components;  // 1 scalar, 3 vector, 6 symmetric tensor (XDMF Tensor6: xx xy xz yy yz zz), 9 tensor, else
+                   // matrix
   ElementType type;
   const void* data;  // rows x components, row-major
   size_t rows;       // must equal the grid's point_count (node) or cell_count (cell)

@@ -79,8 +79,9 @@ int run(const RunArgs& args) {
   std::signal(SIGTERM, on_signal);
   try {
     const RunResult r = sim->run();
-    std::cout << "output: " << options.out_dir.string() << "/rift.xdmf (open in ParaView), summary.json, "
-              << "timeseries.csv\n";
+    std::cout << "output: " << options.out_dir.string()
+              << "/rift_solid.xdmf (open in ParaView; rift.xdmf holds "
+              << "every grid), summary.json, timeseries.csv\n";
     if (r.completed)
       for (const auto& m : read_reference_metrics(sim->scene().reference, options.out_dir)) {
         if (!m.value)

@@ -126,10 +126,8 @@ std::string render_index(const std::string& title, const std::vector<XdmfSeries:
   for (const auto& entry : entries) {
     const std::string time = format_time(entry.time);
     if (entry.grids.empty()) continue;  // nothing to show at this time
-    if (entry.grids.size() == 1) {
-      uniform_grid(out, "      ", entry.grids.front(), time);
-      continue;
-    }
+    // Always a spatial collection, also with one grid: the same structure at every time, so ParaView's
+    // blocks keep their names (a step of one uniform grid between collections renamed them).
     char step[32];
     std::snprintf(step, sizeof step, "step_%08lld", static_cast<long long>(entry.step));
     out += std::string("      <Grid Name=\"") + step +
@@ -138,6 +136,16 @@ std::string render_index(const std::string& title, const std::vector<XdmfSeries:
     for (const auto& grid : entry.grids) uniform_grid(out, "        ", grid, time);
     out += "      </Grid>\n";
   }
+  out += "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  return out;
+}
+
+std::string render_grid_index(const std::string& grid, const std::vector<XdmfSeries::Entry>& entries) {
+  std::string out = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  out += "    <Grid Name=\"" + escape(grid) + "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& entry : entries)
+    for (const auto& g : entry.grids)
+      if (g.name == grid) uniform_grid(out, "      ", g, format_time(entry.time));
   out += "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return out;
 }

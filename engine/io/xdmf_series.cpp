@@ -55,13 +55,17 @@ XdmfSeries::XdmfSeries(std::filesystem::path dir, std::string basename)
 std::filesystem::path XdmfSeries::index_path() const {
   return dir_ / (basename_ + ".xdmf");
 }
+std::filesystem::path XdmfSeries::grid_index_path(const std::string& grid) const {
+  return dir_ / (basename_ + "_" + grid + ".xdmf");
+}
 std::filesystem::path XdmfSeries::sidecar_path() const {
   return dir_ / (basename_ + ".series.json");
 }
 
 bool XdmfSeries::is_own_file_name(std::string_view name) const {
   if (name == basename_ + ".xdmf" || name == basename_ + ".series.json") return true;
-  return name.size() > basename_.size() + 4 && name.starts_with(basename_ + "_") && name.ends_with(".h5");
+  return name.size() > basename_.size() + 5 && name.starts_with(basename_ + "_") &&
+         (name.ends_with(".h5") || name.ends_with(".xdmf"));
 }
 
 void XdmfSeries::check_grids(std::span<const XdmfGrid> grids) const {
@@ -178,6 +182,11 @@ void XdmfSeries::save_index() const {
   // reads the newer sidecar.
   write_text_atomic(sidecar_path(), xdmf::entries_to_json(entries_).dump(1) + "\n");
   write_text_atomic(index_path(), xdmf::render_index(basename_, entries_));
+  std::set<std::string> grids;
+  for (const Entry& e : entries_)
+    for (const GridEntry& g : e.grids) grids.insert(g.name);
+  for (const std::string& g : grids)
+    write_text_atomic(grid_index_path(g), xdmf::render_grid_index(g, entries_));
 }
 
 void XdmfSeries::load_sidecar() {

@@ -2,6 +2,8 @@
 // Time series output for ParaView: HDF5 files for the numbers, one XDMF index for their meaning.
 //
 //   dir/basename.xdmf                  the index ParaView opens (rewritten atomically after each output)
+//   dir/basename_<grid>.xdmf           one grid alone (solid, joints, surface, fluid): XDMF 3.0, what
+//                                      meshio reads; in ParaView one block that keeps its name
 //   dir/basename.series.json           the same entries as data, so a restart can rebuild the index
 //   dir/basename_mesh_<grid>_<rev>.h5  /cells (and /points when the grid's points do not move),
 //                                      written only when the grid's mesh_revision changes
@@ -73,7 +75,9 @@ class XdmfSeries {
   void resume(double time);
 
   size_t entries() const { return entries_.size(); }
-  std::filesystem::path index_path() const;    // dir/basename.xdmf
+  std::filesystem::path index_path() const;  // dir/basename.xdmf
+  // dir/basename_<grid>.xdmf: the index of one grid alone (xdmf_index.hpp), rewritten with the index.
+  std::filesystem::path grid_index_path(const std::string& grid) const;
   std::filesystem::path sidecar_path() const;  // dir/basename.series.json
   // A name this series writes: the index, the sidecar, or a data file "basename_<...>.h5".
   bool is_own_file_name(std::string_view name) const;

@@ -5,10 +5,12 @@
 // that tensor exactly.
 // XDMF's Tensor6 is xx xy xz yy yz zz and ParaView's XDMF Reader expands it in that order: the stress must
 // be written so (Rift keeps xx yy zz xy yz zx internally; written as stored, ParaView's YY was sigma_xy).
-// Skipped without a python3 that has h5py and numpy.
+// Also through meshio, and through ParaView's three XDMF readers where pvpython is installed. Each check
+// is skipped, saying so, when its reader is not installed.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
 #include <string>
 
@@ -20,9 +22,11 @@
 namespace rift {
 namespace {
 
-std::string python_with_h5py() {
+// The first python3 that imports `modules`: the one on PATH, then Debian's (pyenv may shadow it).
+std::string python_with(const std::string& modules) {
   for (const char* py : {"python3", "/usr/bin/python3"})
-    if (std::system((std::string(py) + " -c 'import h5py, numpy' >/dev/null 2>&1").c_str()) == 0) return py;
+    if (std::system((std::string(py) + " -c 'import " + modules + "' >/dev/null 2>&1").c_str()) == 0)
+      return py;
   return {};
 }
 
@@ -48,25 +52,80 @@ print(f"{stress.shape[0]} tets; first row {stress[0]}; worst deviation {worst:.2
 assert worst < 1e-9, worst
 )py";
 
-TEST(OutputReaders, StressReadsInTensor6OrderWithH5py) {
-  const std::string py = python_with_h5py();
-  if (py.empty()) GTEST_SKIP() << "no python3 with h5py and numpy (Debian: apt-get install python3-h5py)";
-  test::TempDir dir;
+// A run of the rotated in-situ block into dir / "run"; returns its stress in Tensor6 order.
+std::array<double, 6> known_stress_run(const test::TempDir& dir) {
   const Scene scene = load_scene(std::string(RIFT_SOURCE_DIR) + "/scenes/validation/in_situ_block.yaml",
                                  {"time.end=1.0e-7", "solid.initial_stress.direction_1=[1, 2, 0]",
                                   "solid.initial_stress.direction_2=[-2, 1, 3]"});
-  ASSERT_TRUE(scene.solid && scene.solid->initial_stress);
-  ASSERT_TRUE(test::run_scene(scene, dir / "run", 1).completed);
+  EXPECT_TRUE(scene.solid && scene.solid->initial_stress);
+  EXPECT_TRUE(test::run_scene(scene, dir / "run", 1).completed);
   const auto s = scene.solid->initial_stress->tensor();  // xx yy zz xy yz zx
   for (int c = 0; c < 6; ++c)
-    for (int d = 0; d < c; ++d) ASSERT_GT(std::abs(s[c] - s[d]), 1e5) << "components must differ: " << c << d;
-  const double tensor6[6] = {s[0], s[3], s[5], s[1], s[4], s[2]};
+    for (int d = 0; d < c; ++d) EXPECT_GT(std::abs(s[c] - s[d]), 1e5) << "components must differ: " << c << d;
+  return {s[0], s[3], s[5], s[1], s[4], s[2]};
+}
+
+// Runs argv, prints its output, returns its status.
+int run_check(const std::vector<std::string>& argv, const test::TempDir& dir) {
+  const std::filesystem::path log = dir / "check.log";
+  const int status = run_program(argv, {}, log);
+  std::printf("%s", test::slurp(log).c_str());
+  return status;
+}
+
+TEST(OutputReaders, StressReadsInTensor6OrderWithH5py) {
+  const std::string py = python_with("h5py, numpy");
+  if (py.empty()) GTEST_SKIP() << "no python3 with h5py and numpy (Debian: apt-get install python3-h5py)";
+  test::TempDir dir;
+  const auto tensor6 = known_stress_run(dir);
   std::ofstream(dir / "check.py") << kCheck;
   std::vector<std::string> argv{py, (dir / "check.py").string(), (dir / "run" / "rift.xdmf").string()};
   for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
-  const std::filesystem::path log = dir / "check.log";
-  EXPECT_EQ(run_program(argv, {}, log), 0) << test::slurp(log);
-  std::printf("%s", test::slurp(log).c_str());
+  EXPECT_EQ(run_check(argv, dir), 0);
+}
+
+// meshio reads one grid's index (rift_solid.xdmf, XDMF 3.0) as a time series: the stress at t = 0 in
+// Tensor6 order, and the mesh.
+constexpr const char* kMeshio = R"py(
+import sys
+import meshio, numpy as np
+expected = np.array([float(v) for v in sys.argv[2:8]])
+with meshio.xdmf.TimeSeriesReader(sys.argv[1]) as reader:
+    points, cells = reader.read_points_cells()
+    assert cells[0].type == "tetra", cells[0].type
+    t, point_data, cell_data = reader.read_data(0)
+    assert t == 0.0, t
+    stress = cell_data["stress"][0]
+    assert stress.shape == (len(cells[0].data), 6), stress.shape
+    worst = np.abs(stress - expected).max() / np.abs(expected).max()
+    print(f"meshio {meshio.__version__}: {reader.num_steps} steps, {len(points)} points, {stress.shape[0]} tets, "
+          f"worst {worst:.1e}; point data {sorted(point_data)}")
+    assert worst < 1e-9, worst
+)py";
+
+TEST(OutputReaders, MeshioReadsOneGridsSeries) {
+  const std::string py = python_with("meshio, numpy");
+  if (py.empty()) GTEST_SKIP() << "no python3 with meshio (Debian: apt-get install python3-meshio)";
+  test::TempDir dir;
+  const auto tensor6 = known_stress_run(dir);
+  std::ofstream(dir / "check.py") << kMeshio;
+  std::vector<std::string> argv{py, (dir / "check.py").string(), (dir / "run" / "rift_solid.xdmf").string()};
+  for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
+  EXPECT_EQ(run_check(argv, dir), 0);
+}
+
+// ParaView's three XDMF readers (scripts/check_paraview_readers.py), where ParaView is installed.
+TEST(OutputReaders, ParaViewsThreeXdmfReadersShowTheSameStress) {
+  if (std::system("command -v pvpython >/dev/null 2>&1 && command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "SKIP: pvpython or xvfb-run not installed (Debian: apt-get install paraview "
+                    "python3-paraview xvfb); ParaView's readers not checked";
+  test::TempDir dir;
+  const auto tensor6 = known_stress_run(dir);
+  std::vector<std::string> argv{"xvfb-run", "-a", "pvpython",
+                                std::string(RIFT_SOURCE_DIR) + "/scripts/check_paraview_readers.py",
+                                (dir / "run").string()};
+  for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
+  EXPECT_EQ(run_check(argv, dir), 0);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "engine/scene/scene_overrides.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstddef>
 
 namespace rift {
 namespace {
@@ -122,6 +124,53 @@ class OverrideWalker {
   std::string path_;
 };
 
+// `--set path=null` (or ~) removes what path names: a key from its mapping, an item from its list, so the
+// scene reads as if it had never been written there (its default, or no section). A path that names
+// nothing removes nothing. False when the tree is in the way (a scalar where a mapping or list should be).
+bool remove_path(YamlNode& root, const std::vector<PathStep>& steps) {
+  struct Token {
+    const std::string* key;
+    size_t index;
+  };
+  std::vector<Token> tokens;
+  for (const auto& step : steps) {
+    tokens.push_back({&step.key, 0});
+    for (size_t index : step.indices) tokens.push_back({nullptr, index});
+  }
+  YamlNode* node = &root;
+  for (size_t t = 0; t < tokens.size(); ++t) {
+    const bool last = t + 1 == tokens.size();
+    if (tokens[t].key) {
+      if (node->kind == YamlNode::Kind::null) return true;
+      if (node->kind != YamlNode::Kind::mapping) return false;
+      auto it = std::find_if(node->entries.begin(), node->entries.end(),
+                             [&](const YamlEntry& e) { return e.key == *tokens[t].key; });
+      if (it == node->entries.end()) return true;
+      if (last) {
+        node->entries.erase(it);
+        return true;
+      }
+      node = &it->value;
+    } else {
+      if (node->kind == YamlNode::Kind::null) return true;
+      if (node->kind != YamlNode::Kind::sequence) return false;
+      if (tokens[t].index >= node->items.size()) return true;
+      if (last) {
+        node->items.erase(node->items.begin() + static_cast<std::ptrdiff_t>(tokens[t].index));
+        return true;
+      }
+      node = &node->items[tokens[t].index];
+    }
+  }
+  return true;
+}
+
+bool is_null_text(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.erase(text.begin());
+  return text == "null" || text == "~" || text == "Null" || text == "NULL";
+}
+
 void apply_override(YamlNode& root, const std::string& text, ReadContext& ctx) {
   const SourceLocation where{"--set " + text, 0, 0};
   const size_t eq = text.find('=');
@@ -131,6 +180,12 @@ void apply_override(YamlNode& root, const std::string& text, ReadContext& ctx) {
   }
   const auto steps = parse_path(text.substr(0, eq), where, ctx);
   if (!steps) return;
+  if (is_null_text(text.substr(eq + 1))) {
+    if (!remove_path(root, *steps))
+      ctx.error(where, text.substr(0, eq), "a path through mappings and lists to remove",
+                "a plain value in the way");
+    return;
+  }
   YamlParseResult value = parse_yaml_tree(text.substr(eq + 1), where.file, /*override_origin=*/true);
   if (value.error) {
     value.error->key_path = text.substr(0, eq);

@@ -279,6 +279,22 @@ TEST(SceneOverrides, AppendsAListItem) {
   EXPECT_EQ(s.solid->materials[1].name, "clay");
 }
 
+// key=null removes what the path names, so the scene reads as if it had never been written: a key takes
+// its default, a list item goes, a section goes; a path that names nothing removes nothing.
+TEST(SceneOverrides, NullRemovesTheKey) {
+  Scene s = read_ok(kWithSolid, {"time.dt=1e-8", "time.dt=null", "solid.boundaries[1]=~", "time.safety=0.25",
+                                 "time.safety=null", "checkpoint.keep=null"});
+  EXPECT_FALSE(s.time.dt > 0.0);  // not set again
+  ASSERT_EQ(s.solid->boundaries.size(), 1u);
+  EXPECT_EQ(s.time.safety, read_ok(kMinimal).time.safety);  // the default
+  EXPECT_FALSE(read_ok(kWithSolid, {"solid=null"}).solid);
+  // Required keys are still required once removed.
+  EXPECT_EQ(read_one_error(kWithSolid, {"solid.materials[0].poisson=null"}).key_path,
+            "solid.materials[0].poisson");
+  EXPECT_EQ(read_one_error(kMinimal, {"scene.name.first=null"}).expected,
+            "a path through mappings and lists to remove");
+}
+
 TEST(SceneOverrides, UnknownKeyIsReportedAtTheOverride) {
   SceneDiagnostic d = read_one_error(kWithSolid, {"solid.materials[0].densty=3000"});
   EXPECT_EQ(d.file, "--set solid.materials[0].densty=3000");

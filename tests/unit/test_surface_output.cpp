@@ -37,7 +37,7 @@ fs::path last_output(const fs::path& dir) {
   fs::path best;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind("rift_", 0) == 0 && name.find("mesh") == std::string::npos &&
+    if (name.rfind("rift_", 0) == 0 && name.ends_with(".h5") && name.find("mesh") == std::string::npos &&
         name > best.filename().string())
       best = e.path();
   }

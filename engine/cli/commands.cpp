@@ -13,12 +13,14 @@
 #include <Eigen/Core>
 #include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
 #include "engine/core/folder_name.hpp"
 #include "engine/core/log.hpp"
+#include "engine/run_report.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
 #include "engine/sweep/reference_metrics.hpp"
@@ -53,6 +55,14 @@ void on_signal(int) {
 
 }  // namespace
 
+// The physics and the whole wall time, from the summary the run wrote (nothing when there is none).
+static void print_run_report(const std::filesystem::path& out_dir) {
+  std::ifstream in(out_dir / "summary.json");
+  if (!in) return;
+  const auto summary = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!summary.is_discarded()) std::cout << run_report(summary);
+}
+
 int run(const RunArgs& args) {
   init_logging(false, args.quiet);
   auto scene = read_scene(args.scene);
@@ -82,6 +92,7 @@ int run(const RunArgs& args) {
     std::cout << "output: " << options.out_dir.string()
               << "/rift_solid.xdmf (open in ParaView; rift.xdmf holds "
               << "every grid), summary.json, timeseries.csv\n";
+    print_run_report(options.out_dir);
     if (r.completed)
       for (const auto& m : read_reference_metrics(sim->scene().reference, options.out_dir)) {
         if (!m.value)

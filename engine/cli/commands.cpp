@@ -20,6 +20,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/folder_name.hpp"
 #include "engine/core/log.hpp"
+#include "engine/plot/run_plot.hpp"
 #include "engine/run_report.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/simulation.hpp"
@@ -108,6 +109,16 @@ int run(const RunArgs& args) {
     spdlog::error("{}", e.what());
     return 1;
   }
+}
+
+int plot(const std::string& run_dir, const std::string& out_dir) {
+  const RunPlotResult r = plot_run(run_dir, out_dir);
+  if (!r.problem.empty()) {
+    std::cerr << "rift plot: " << r.problem << "\n";
+    return 2;
+  }
+  for (const auto& p : r.pictures) std::cout << p.string() << "\n";
+  return 0;
 }
 
 int sweep(const SweepArgs& args) {

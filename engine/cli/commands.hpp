@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands behind `rift`: run, check, info, graph, sweep. Each returns the process exit code:
+// The subcommands behind `rift`: run, check, info, graph, sweep, plot. Each returns the process exit code:
 // 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options), 130 stopped by a
 // signal (a checkpoint was written; continue with --restart latest).
 #include <optional>
@@ -34,5 +34,7 @@ int sweep(const SweepArgs& args);
 int check(const SceneArgs& args);
 int info();
 int graph(const SceneArgs& args, int threads);
+// rift plot RUN_DIR [--out DIR]: PNGs of the run's time series (engine/plot/run_plot.hpp).
+int plot(const std::string& run_dir, const std::string& out_dir);
 
 }  // namespace rift::cli

@@ -47,6 +47,12 @@ int main(int argc, char** argv) {
                         "output folder (default rift-out/sweep-<scene name>)");
   sweep_cmd->add_option("--threads,-j", sweep_args.threads, "worker threads")->check(CLI::Range(1, 1024));
 
+  std::string plot_dir, plot_out;
+  auto* plot_cmd =
+      app.add_subcommand("plot", "PNGs of a run's time series (energies, loads, fracture, fluid)");
+  plot_cmd->add_option("run", plot_dir, "a run's output folder (with timeseries.csv)")->required();
+  plot_cmd->add_option("--out,-o", plot_out, "folder for the pictures (default RUN/plots)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -60,6 +66,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return info();
     if (*graph_cmd) return graph(graph_args, graph_threads);
     if (*sweep_cmd) return sweep(sweep_args);
+    if (*plot_cmd) return plot(plot_dir, plot_out);
   } catch (const std::bad_alloc&) {
     std::cerr << "rift: internal error: out of memory\n";
     return 1;

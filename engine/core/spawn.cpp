@@ -48,4 +48,10 @@ int run_program(const std::vector<std::string>& argv, const std::filesystem::pat
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+std::string python_with(const std::string& modules) {
+  for (const char* py : {"python3", "/usr/bin/python3"})
+    if (run_program({py, "-c", "import " + modules}) == 0) return py;
+  return "";
+}
+
 }  // namespace rift

@@ -14,4 +14,8 @@ namespace rift {
 int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
                 const std::filesystem::path& log = {});
 
+// The first Python that imports `modules` (e.g. "matplotlib"): the one on PATH, else Debian's
+// /usr/bin/python3 (pyenv or a venv may shadow it). Empty when neither does.
+std::string python_with(const std::string& modules);
+
 }  // namespace rift

@@ -144,18 +144,11 @@ std::string to_csv(const SweepOptions& o, const std::vector<std::string>& metric
   return csv;
 }
 
-// The first Python that has matplotlib: the one on PATH, else Debian's (pyenv or a venv may shadow it).
-std::string python_with_matplotlib() {
-  for (const char* py : {"python3", "/usr/bin/python3"})
-    if (run_program({py, "-c", "import matplotlib"}) == 0) return py;
-  return "";
-}
-
 // The plotter runs from an argument vector in the sweep's folder: the title (the scene's name) and the
 // folder's path reach it as plain arguments, never through a shell.
 std::string plot(const fs::path& dir, const std::string& title) {
   write_text_atomic(dir / "plot_sweep.py", kSweepPlotScript);
-  const std::string py = python_with_matplotlib();
+  const std::string py = python_with("matplotlib");
   if (py.empty())
     return "no plot: python3 with matplotlib is missing (Debian: apt-get install python3-matplotlib); then "
            "run python3 " +

@@ -44,8 +44,8 @@ std::vector<bool> select_regions(const TetMesh& mesh, const std::vector<std::str
     else if (int32_t i = mesh.region_index(r); i >= 0)
       applies[i] = true;
     else
-      throw Error(key + ": the mesh has no region '" + r +
-                  "'; its regions are: " + join_names(mesh.region_names) + " (or use 'all')");
+      throw Error(key + ": the mesh has no region '" + r + "'" + hint(did_you_mean(r, mesh.region_names)) +
+                  "; its regions are: " + join_names(mesh.region_names) + " (or use 'all')");
   }
   return applies;
 }
@@ -183,8 +183,9 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
     }
     const int32_t surface = mesh.surface_index(bc.surface);
     if (surface < 0)
-      throw Error(key + ": the mesh has no surface '" + bc.surface +
-                  "'; its surfaces are: " + join_names(mesh.surface_names));
+      throw Error(key + ": the mesh has no surface '" + bc.surface + "'" +
+                  hint(did_you_mean(bc.surface, mesh.surface_names)) +
+                  "; its surfaces are: " + join_names(mesh.surface_names));
     const bool is_velocity =
         bc.kind == SolidBoundarySpec::Kind::fixed || bc.kind == SolidBoundarySpec::Kind::velocity;
     const int32_t index =

@@ -18,6 +18,11 @@ std::string closest_match(std::string_view word, std::span<const std::string> ca
 // "did you mean 'x'?" or "".
 std::string did_you_mean(std::string_view word, std::span<const std::string> candidates);
 
+// " (did you mean 'x'?)" to append to a message, or "" when there is no suggestion.
+inline std::string hint(const std::string& suggestion) {
+  return suggestion.empty() ? std::string() : " (" + suggestion + ")";
+}
+
 // "a, b, c" for listing the valid names in a message; "(none)" for an empty list.
 inline std::string join_names(const std::vector<std::string>& names) {
   std::string out;

@@ -21,7 +21,8 @@ std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const Te
     const FluidBoundarySpec& b = spec.boundaries[i];
     if (mesh.surface_index(b.surface) < 0)
       throw Error("fluid.boundaries[" + std::to_string(i) + "].surface: the mesh has no surface '" +
-                  b.surface + "'; its surfaces are: " + join_names(mesh.surface_names));
+                  b.surface + "'" + hint(did_you_mean(b.surface, mesh.surface_names)) +
+                  "; its surfaces are: " + join_names(mesh.surface_names));
     fluid::FluidBoundary fb;
     fb.surface = b.surface;
     fb.kind = static_cast<fluid::BoundaryKind>(b.kind);

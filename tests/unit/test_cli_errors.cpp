@@ -67,6 +67,21 @@ TEST(Cli, ANonFiniteQuantityStopsTheRunAndReachesNoFile) {
   EXPECT_EQ(summary.find("null"), std::string::npos) << summary;
 }
 
+// rift check builds the mesh and the models as a run's set-up does, so what depends on the mesh (here a
+// misspelt surface name) is caught before any run, with a suggestion; a good scene still checks.
+TEST(Cli, CheckCatchesWhatTheSetUpWouldRefuse) {
+  const std::string cavity = std::string(RIFT_SOURCE_DIR) + "/scenes/examples/cavity.yaml";
+  const CliResult bad = rift({"check", cavity, "--set", "fluid.boundaries[1].surface=xmn"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(
+      bad.output.find("fluid.boundaries[1].surface: the mesh has no surface 'xmn' (did you mean 'xmin'?)"),
+      std::string::npos)
+      << bad.output;
+  const CliResult good = rift({"check", cavity});
+  EXPECT_EQ(good.exit_code, 0) << good.output;
+  EXPECT_NE(good.output.find("valid (scene, mesh and set-up)"), std::string::npos) << good.output;
+}
+
 TEST(Cli, SetIndexOutOfRangeIsBadInput) {
   test::TempDir dir;
   const std::string set = "solid.materials[99999999999999999999].density=1";

@@ -20,6 +20,7 @@
 #include "engine/io/time_series_csv.hpp"
 #include "engine/io/xdmf_series.hpp"
 #include "engine/progress.hpp"
+#include "engine/scene/scene_diff.hpp"
 #include "rift/build_info.hpp"
 
 namespace rift {
@@ -204,15 +205,43 @@ void Simulation::restart_from_latest() {
     throw Error(message + "\nRun without --restart, or point --out at the folder of the interrupted run");
   }
   const CheckpointMeta meta = read_checkpoint(*latest, world_->store);
-  if (meta.scene_hash != scene_.hash)
-    throw Error("--restart latest: " + latest->string() + " was written for scene hash " + meta.scene_hash +
-                ", this scene resolves to " + scene_.hash +
-                ". A restart continues the same scene (and mesh "
-                "files); compare " +
-                (options_.out_dir / "scene.yaml").string() + " with your scene and overrides.");
-  if (meta.dt != dt_)
-    throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s",
-                            meta.dt, dt_));
+  bool extending = false;
+  if (meta.scene_hash != scene_.hash) {
+    // Only the end time or the output settings changed: the run continues to the new end.
+    const std::vector<std::string> keys = differing_keys(meta.resolved_scene, scene_.resolved_yaml);
+    extending = only_extension_keys(keys);
+    if (!extending) {
+      std::string named;
+      for (size_t i = 0; i < keys.size() && i < 12; ++i)
+        named += (i ? ", " : "") + (keys[i].empty() ? "the whole scene" : keys[i]);
+      if (keys.size() > 12) named += fmt::format(" and {} more", keys.size() - 12);
+      throw Error("--restart latest: " + latest->string() + " was written for scene hash " + meta.scene_hash +
+                  ", this scene resolves to " + scene_.hash + "; they differ in " + named +
+                  ". A restart continues the same scene; it may change only time.end and output.* (to extend "
+                  "or re-plan the outputs of a run). Compare " +
+                  (options_.out_dir / "scene.yaml").string() + " with your scene and overrides.");
+    }
+  }
+  if (meta.dt != dt_) {
+    if (!extending)
+      throw Error(fmt::format("--restart latest: checkpoint dt {:.17g} s differs from this run's {:.17g} s",
+                              meta.dt, dt_));
+    // An extended run keeps the steps it took: the same dt, as many steps as reach the new end.
+    if (!(meta.dt <= dt_ * (1.0 + 1e-6) || scene_.time.allow_unstable_dt))
+      throw Error(fmt::format("--restart latest: the run's step {:.17g} s is above this scene's {:.17g} s",
+                              meta.dt, dt_));
+    dt_ = meta.dt;
+    total_steps_ = static_cast<int64_t>(std::ceil(scene_.time.end / dt_ - 1e-9));
+  }
+  if (meta.step > total_steps_)
+    throw Error(
+        fmt::format("--restart latest: the checkpoint is at t = {:.6g} s (step {}), beyond time.end = "
+                    "{:.6g} s: give a later time.end to extend the run",
+                    meta.time, meta.step, scene_.time.end));
+  if (extending)
+    spdlog::info(
+        "extending the run to t = {:.6g} s: {} steps of {:.6g} s (only time.end or output.* changed)",
+        static_cast<double>(total_steps_) * dt_, total_steps_, dt_);
   step_ = meta.step;
   for (const auto& m : world_->models) m->restored(StepContext{step_, time(), dt_});
   outputs_written_ = meta.integers.count("outputs_written") ? meta.integers.at("outputs_written") : 0;

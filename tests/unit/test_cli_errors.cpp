@@ -82,6 +82,36 @@ TEST(Cli, CheckCatchesWhatTheSetUpWouldRefuse) {
   EXPECT_NE(good.output.find("valid (scene, mesh and set-up)"), std::string::npos) << good.output;
 }
 
+// A finished run is extended by restarting with a later time.end (and output settings): it continues from
+// its last checkpoint with the steps it took, to the new end. Any other change is refused, naming the keys.
+TEST(Cli, AFinishedRunIsExtendedByALaterEndTime) {
+  test::TempDir dir;
+  const fs::path out = dir / "out";
+  const std::string scene = std::string(RIFT_SOURCE_DIR) + "/scenes/validation/single_joint_mode_I.yaml";
+  const std::vector<std::string> base{"run",        scene,   "--out",
+                                      out.string(), "--set", "checkpoint.every_steps=1000"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  const CliResult first = rift(with({"--set", "time.end=1.0e-3"}));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const CliResult changed = rift(
+      with({"--set", "time.end=2.0e-3", "--set", "solid.materials[0].density=3000", "--restart", "latest"}));
+  EXPECT_EQ(changed.exit_code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("they differ in solid.materials[0].density, time.end"), std::string::npos)
+      << changed.output;
+  const CliResult extended =
+      rift(with({"--set", "time.end=2.0e-3", "--set", "output.interval=5.0e-4", "--restart", "latest"}));
+  ASSERT_EQ(extended.exit_code, 0) << extended.output;
+  EXPECT_NE(extended.output.find("extending the run to t = 0.002 s"), std::string::npos) << extended.output;
+  std::ifstream summary(out / "summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), {});
+  EXPECT_NE(text.find("\"status\": \"completed\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"simulated_time\": 0.002"), std::string::npos) << text;
+}
+
 TEST(Cli, SetIndexOutOfRangeIsBadInput) {
   test::TempDir dir;
   const std::string set = "solid.materials[99999999999999999999].density=1";

@@ -80,7 +80,7 @@ def run_case(rift, theta_deg, mu, cells, unstructured, extra, threads):
             f"solid.contact.friction={mu}", block_mesh(cells, unstructured),
             "output.interval=0.002", "output.fields=[velocity, displacement, region]", f"time.end={END}"]
     with tempfile.TemporaryDirectory(prefix="incline") as out:
-        args = [rift, "run", SCENE, "-o", out, "--threads", str(threads), "-q"]
+        args = [rift, "run", "--overwrite", SCENE, "-o", out, "--threads", str(threads), "-q"]
         for s in sets + extra:
             args += ["--set", s]
         proc = subprocess.run(args, capture_output=True, text=True)

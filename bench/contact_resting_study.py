@@ -36,7 +36,7 @@ def run_case(rift, end, cells, unstructured, threads):
             "output.fields=[velocity, displacement, region]"]
     row = {"mesh": "unstructured" if unstructured else "lattice", "cells": cells, "end": end}
     with tempfile.TemporaryDirectory(prefix="resting") as out:
-        args = [rift, "run", SCENE, "-o", out, "--threads", str(threads), "-q"]
+        args = [rift, "run", "--overwrite", SCENE, "-o", out, "--threads", str(threads), "-q"]
         for s in sets:
             args += ["--set", s]
         proc = subprocess.run(args, capture_output=True, text=True)

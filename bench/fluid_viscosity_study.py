@@ -31,7 +31,7 @@ VISCOSITIES = ["1e-3", "1e-1", "10", "1e3", "1e5"]
 
 
 def run(rift, scene, sets, out):
-    cmd = [rift, "run", os.path.join(ROOT, scene), "--threads", "1", "--out", out]
+    cmd = [rift, "run", "--overwrite", os.path.join(ROOT, scene), "--threads", "1", "--out", out]
     for s in sets:
         cmd += ["--set", s]
     p = subprocess.run(cmd, capture_output=True, text=True)

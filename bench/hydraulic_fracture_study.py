@@ -49,7 +49,7 @@ def run(rift, scene, out, cells_per_m, extra):
     box_max_x = 1.25 if "sneddon" in scene else 5.0
     sets.append(f"solid.fracture.box_max=[{box_max_x}, {band}, 1]")
     sets.append("output.fields=[displacement, pressure, aperture]")
-    args = [rift, "run", os.path.join(ROOT, "scenes/validation", scene), "-o", out, "--threads", "2", "-q"]
+    args = [rift, "run", "--overwrite", os.path.join(ROOT, "scenes/validation", scene), "-o", out, "--threads", "2", "-q"]
     for s in sets + extra:
         args += ["--set", s]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
@@ -137,7 +137,7 @@ def radial(rift, n, tmp, scene):
     sets = [f"mesh.generate.graded.size={h}", f"mesh.generate.graded.fine_min=[0, 0, -{2 * h}]",
             f"mesh.generate.graded.fine_max=[3.0, 3.0, {2 * h}]", f"solid.fracture.box_min=[-1, -1, -{0.9 * h}]",
             f"solid.fracture.box_max=[3.0, 3.0, {0.9 * h}]", "output.fields=[pressure]"]
-    args = [rift, "run", os.path.join(ROOT, "scenes/validation", scene + ".yaml"), "-o", out, "--threads", "2", "-q"]
+    args = [rift, "run", "--overwrite", os.path.join(ROOT, "scenes/validation", scene + ".yaml"), "-o", out, "--threads", "2", "-q"]
     for x in sets:
         args += ["--set", x]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
@@ -162,7 +162,7 @@ def borehole(rift, size, tmp, penalty=None):
             f"fracture_flow.injection.well_volume={math.pi * 0.05 ** 2 * size / 2}", "output.fields=[pressure]"]
     if penalty is not None:
         sets.append(f"solid.materials[0].fracture.penalty={penalty * E}")
-    args = [rift, "run", os.path.join(ROOT, "scenes/validation/borehole_breakdown.yaml"), "-o", out, "--threads",
+    args = [rift, "run", "--overwrite", os.path.join(ROOT, "scenes/validation/borehole_breakdown.yaml"), "-o", out, "--threads",
             "2", "-q"]
     for x in sets:
         args += ["--set", x]

@@ -28,7 +28,7 @@ def main():
     runs = {}
     for t in threads:
         out = os.path.join(args.out, f"threads{t}")
-        cmd = [args.rift, "run", args.scene, "--threads", str(t), "--out", out, "--quiet"]
+        cmd = [args.rift, "run", "--overwrite", args.scene, "--threads", str(t), "--out", out, "--quiet"]
         for o in args.overrides:
             cmd += ["--set", o]
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)

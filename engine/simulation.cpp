@@ -49,6 +49,7 @@ Simulation::Simulation(Scene scene, RunOptions options)
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
   check_background_access();
   choose_dt();
+  if (options_.write_output && !options_.restart_latest) refuse_or_clear_earlier_run();
   if (options_.write_output)
     checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
   // A restart reads what it continues (checkpoint, time series) before anything in the folder changes, so
@@ -62,6 +63,23 @@ Simulation::Simulation(Scene scene, RunOptions options)
     remove_killed_writers_files();
     if (options_.restart_latest) series_->resume(time());
   }
+}
+
+// A new run never mixes its files with an earlier run's (a longer run's later outputs would stay beside
+// the new ones, and its checkpoints would be taken for this run's): the folder is refused, or, with
+// overwrite, the earlier run's files (Rift's names only) are deleted first.
+void Simulation::refuse_or_clear_earlier_run() {
+  const std::vector<std::string> earlier = earlier_run_files(options_.out_dir);
+  if (earlier.empty()) return;
+  std::string named;
+  for (size_t i = 0; i < earlier.size() && i < 5; ++i) named += (i ? ", " : "") + earlier[i];
+  if (earlier.size() > 5) named += fmt::format(" and {} more", earlier.size() - 5);
+  if (!options_.overwrite)
+    throw Error("output folder " + options_.out_dir.string() + " holds an earlier run (" + named +
+                "): continue it with --restart latest, write elsewhere with --out, or replace it with "
+                "--overwrite (deletes that run's files only)");
+  remove_earlier_run(options_.out_dir);
+  spdlog::info("--overwrite: removed the earlier run in {} ({})", options_.out_dir.string(), named);
 }
 
 // A run killed while writing leaves "<output>.tmp-<pid>" files; the next run in the folder deletes those

@@ -23,6 +23,9 @@ struct RunOptions {
   bool progress = true;
   bool write_output = true;                // fields, time series, summary (off for pure benchmarks)
   std::optional<int64_t> stop_after_step;  // stop (with a checkpoint) once this step is done: tests, studies
+  // A folder that already holds a run is refused (continue it with restart_latest); overwrite deletes that
+  // run's files (Rift's own names only) first.
+  bool overwrite = false;
 };
 
 struct RunResult {
@@ -60,6 +63,7 @@ class Simulation {
   void check_step_count(double steps, double dt, const std::string& source) const;
   void choose_dt();
   void restart_from_latest();
+  void refuse_or_clear_earlier_run();
   void write_output();
   void record_metrics();
   void write_time_series() const;

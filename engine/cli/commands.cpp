@@ -73,6 +73,7 @@ int run(const RunArgs& args) {
                                          : std::filesystem::path(args.out_dir);
   options.threads = args.threads;
   options.restart_latest = args.restart == "latest";
+  options.overwrite = args.overwrite;
   options.progress = !args.quiet;
   if (args.stop_after) options.stop_after_step = *args.stop_after;
   if (!args.restart.empty() && args.restart != "latest") {

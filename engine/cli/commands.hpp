@@ -20,6 +20,7 @@ struct RunArgs {
   std::string restart;                  // "" or "latest"
   std::optional<long long> stop_after;  // stop after this step with a checkpoint
   bool quiet = false;
+  bool overwrite = false;  // replace an earlier run in the output folder
 };
 
 struct SweepArgs {

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--restart", run_args.restart, "continue from a checkpoint: 'latest'");
   run_cmd->add_option("--stop-after", run_args.stop_after, "stop after this step, writing a checkpoint");
   run_cmd->add_flag("--quiet,-q", run_args.quiet, "only warnings and errors");
+  run_cmd->add_flag("--overwrite", run_args.overwrite,
+                    "replace an earlier run in the output folder (its files only; others stay)");
 
   SceneArgs check_args;
   auto* check_cmd = app.add_subcommand("check", "Validate a scene and print it fully resolved");

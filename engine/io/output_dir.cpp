@@ -42,4 +42,42 @@ std::vector<std::string> remove_orphan_temp_files(const std::filesystem::path& d
   return removed;
 }
 
+std::vector<std::string> earlier_run_files(const std::filesystem::path& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return out;
+  static constexpr std::string_view kFiles[] = {"scene.yaml",    "summary.json",     "timeseries.csv",
+                                                "fractures.csv", "rift.series.json", "rift.xdmf"};
+  const auto regular = [](const std::filesystem::directory_entry& e) {
+    std::error_code ignored;
+    return e.is_regular_file(ignored) && !e.is_symlink(ignored);
+  };
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    bool ours = std::find(std::begin(kFiles), std::end(kFiles), name) != std::end(kFiles);
+    ours |= name.starts_with("rift_") && (name.ends_with(".h5") || name.ends_with(".xdmf"));
+    if (ours && regular(e)) out.push_back(name);
+  }
+  if (std::filesystem::is_directory(dir / "checkpoints", ec) &&
+      !std::filesystem::is_symlink(dir / "checkpoints", ec))
+    for (const auto& e : std::filesystem::directory_iterator(dir / "checkpoints", ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.starts_with("ckpt_") && name.ends_with(".h5") && regular(e))
+        out.push_back("checkpoints/" + name);
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void remove_earlier_run(const std::filesystem::path& dir) {
+  std::vector<std::string> names = earlier_run_files(dir);
+  std::error_code ec;
+  for (const char* extra : {"rift.log", "plots"})
+    if (std::filesystem::exists(std::filesystem::symlink_status(dir / extra, ec))) names.emplace_back(extra);
+  for (const std::string& name : names) {
+    std::filesystem::remove_all(dir / name, ec);
+    if (ec) throw Error("cannot remove " + (dir / name).string() + " of the earlier run: " + ec.message());
+  }
+}
+
 }  // namespace rift

@@ -225,6 +225,7 @@ SweepResult run_sweep(const SweepOptions& o) {
       ro.out_dir = dir;
       ro.threads = o.threads;
       ro.progress = false;
+      ro.overwrite = true;  // a variant not done (interrupted, failed) is run again from the start
       Simulation sim(scenes[i], ro);
       const RunResult r = sim.run();
       row.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

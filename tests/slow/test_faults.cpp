@@ -118,7 +118,9 @@ void kill_then_continue(const char* hook, long k, const fs::path& straight, cons
     for (const auto& e : fs::directory_iterator(out / "checkpoints"))
       has_checkpoint |= e.path().extension() == ".h5";
   std::vector<std::string> again{"run", scene, "--out", out.string()};
-  if (has_checkpoint) again.insert(again.end(), {"--restart", "latest"});
+  // Without a checkpoint the run starts again, replacing what the killed one left (--overwrite).
+  again.push_back(has_checkpoint ? "--restart" : "--overwrite");
+  if (has_checkpoint) again.push_back("latest");
   std::printf("killed at %s: %s\n", at.c_str(),
               has_checkpoint ? "restarted from its latest checkpoint" : "no checkpoint yet, started again");
   ASSERT_EQ(run_rift(again, log, 0), 0) << at << ": " << read(log);

@@ -112,6 +112,29 @@ TEST(Cli, AFinishedRunIsExtendedByALaterEndTime) {
   EXPECT_NE(text.find("\"simulated_time\": 0.002"), std::string::npos) << text;
 }
 
+// A second run into a folder that holds a run is refused (its files would mix with the earlier run's);
+// --overwrite deletes the earlier run's files first, and leaves a user's own file alone.
+TEST(Cli, AnEarlierRunInTheFolderIsRefusedUnlessOverwritten) {
+  test::TempDir dir;
+  const fs::path out = dir / "out";
+  const CliResult first =
+      rift(quick_run(out, {"--set", "time.end=4.0e-6", "--set", "output.interval=1.0e-6"}));
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  std::ofstream(out / "notes.txt") << "mine";
+  size_t outputs_before = 0;
+  for (const auto& e : fs::directory_iterator(out)) outputs_before += e.path().extension() == ".h5";
+  const CliResult again = rift(quick_run(out));
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_NE(again.output.find("holds an earlier run"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
+  const CliResult replaced = rift(quick_run(out, {"--overwrite"}));
+  ASSERT_EQ(replaced.exit_code, 0) << replaced.output;
+  size_t outputs_after = 0;
+  for (const auto& e : fs::directory_iterator(out)) outputs_after += e.path().extension() == ".h5";
+  EXPECT_LT(outputs_after, outputs_before) << "the longer run's later outputs were left behind";
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+}
+
 TEST(Cli, SetIndexOutOfRangeIsBadInput) {
   test::TempDir dir;
   const std::string set = "solid.materials[99999999999999999999].density=1";

@@ -1,7 +1,6 @@
 #pragma once
-// Shared helpers of the I/O tests. TempDir: a fresh, empty directory per test (ctest runs tests of one
-// executable as parallel processes, so the name carries the test name and the pid), removed again when the
-// test ends.
+// Shared helpers of the I/O tests. TempDir: a fresh, empty directory (ctest runs tests of one executable as
+// parallel processes, so the name carries the test name, the pid and a count), removed again when it goes.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,8 +17,12 @@ class TempDir {
  public:
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() / ("rift-" + std::string(info->test_suite_name()) + "-" +
-                                                      info->name() + "-" + std::to_string(::getpid()));
+    // A test may hold several: the count keeps them apart (one name for two of them made a restart test
+    // compare a folder with itself).
+    static int count = 0;
+    path_ = std::filesystem::temp_directory_path() /
+            ("rift-" + std::string(info->test_suite_name()) + "-" + info->name() + "-" +
+             std::to_string(::getpid()) + "-" + std::to_string(count++));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "engine/mesh/structured_box.hpp"
 #include "kernels/fluid_element.hpp"
@@ -114,6 +116,43 @@ L2Errors l2_errors(const fluid::FluidSolver& s, U exact_u, P exact_p) {
   e.pressure = std::sqrt(e.pressure);
   e.velocity_norm = std::sqrt(e.velocity_norm);
   return e;
+}
+
+// The x force of the fluid on the no-slip wall `surface`: minus the consistent reaction at its nodes, the
+// residual of the x-momentum equation there with the pressure term integrated by parts,
+//   F_x = sum_{i on the wall} sum_t V_t (p_t dN_i/dx - mu grad u_x . grad N_i),   p_t = the cell mean,
+// which equals int (sigma n)_x dS for the exact solution and converges at the rate of the energy norm
+// squared (the traction of the piecewise-constant P1 stress is only O(h)). Valid where the time,
+// convection, stabilisation and absorption terms vanish at the wall (a steady Stokes flow, u = 0 there).
+inline double wall_force_x(const TetMesh& mesh, const fluid::FluidSolver& solver, double mu,
+                           const std::string& surface) {
+  const size_t nn = solver.node_count();
+  const int32_t wall = mesh.surface_index(surface);
+  std::vector<uint8_t> on_wall(nn, 0);
+  for (size_t f = 0; f < mesh.triangles.size(); ++f)
+    if (mesh.triangle_surface[f] == wall)
+      for (int32_t v : mesh.triangles[f]) on_wall[v] = 1;
+  const auto tets = solver.tets();
+  const size_t nt = tets.size() / 4;
+  std::vector<double> vol(nt), grad(12 * nt), h(nt);
+  kernels::p1_prepare(solver.nodes(), tets, vol, grad, h);
+  const auto u = solver.velocity();
+  const auto p = solver.pressure();
+  double reaction = 0.0;
+  for (size_t t = 0; t < nt; ++t) {
+    const double* g = &grad[12 * t];
+    double gux[3] = {0, 0, 0}, pbar = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      const size_t n = static_cast<size_t>(tets[4 * t + a]);
+      for (int d = 0; d < 3; ++d) gux[d] += u[3 * n] * g[3 * a + d];
+      pbar += 0.25 * p[n];
+    }
+    for (int a = 0; a < 4; ++a)
+      if (on_wall[tets[4 * t + a]])
+        reaction += vol[t] * (mu * (gux[0] * g[3 * a] + gux[1] * g[3 * a + 1] + gux[2] * g[3 * a + 2]) -
+                              pbar * g[3 * a]);
+  }
+  return -reaction;
 }
 
 }  // namespace rift::fluid_test

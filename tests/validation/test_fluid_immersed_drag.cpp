@@ -31,6 +31,7 @@
 #include "kernels/fluid_element.hpp"
 #include "kernels/volume_fraction.hpp"
 #include "systems/fluid/fluid_solver.hpp"
+#include "tests/validation/fluid_support.hpp"
 
 namespace rift {
 namespace {
@@ -73,39 +74,6 @@ std::vector<double> solid_fraction(const TetMesh& fluid, const TetMesh& solid) {
   std::vector<double> solid_volume(nf), alpha(nf);
   kernels::volume_fraction({fx, ft, sx, st, ws.pairs, solid_volume, alpha}, 0, nf);
   return alpha;
-}
-
-// The x force of the fluid on its no-slip "sphere" wall (the solid's core, held with it): minus the
-// consistent reaction at those nodes, the residual of the x-momentum equation with the pressure term
-// integrated by parts (test_fluid_sphere_drag.cpp; u = 0 there, so the absorption adds nothing).
-double inner_wall_force(const TetMesh& mesh, const FluidSolver& solver, double mu) {
-  const size_t nn = solver.node_count();
-  const int32_t wall = mesh.surface_index("sphere");
-  std::vector<uint8_t> on_wall(nn, 0);
-  for (size_t f = 0; f < mesh.triangles.size(); ++f)
-    if (mesh.triangle_surface[f] == wall)
-      for (int32_t v : mesh.triangles[f]) on_wall[v] = 1;
-  const auto tets = solver.tets();
-  const size_t nt = tets.size() / 4;
-  std::vector<double> vol(nt), grad(12 * nt), h(nt);
-  kernels::p1_prepare(solver.nodes(), tets, vol, grad, h);
-  const auto u = solver.velocity();
-  const auto p = solver.pressure();
-  double reaction = 0.0;
-  for (size_t t = 0; t < nt; ++t) {
-    const double* g = &grad[12 * t];
-    double gux[3] = {0, 0, 0}, pbar = 0.0;
-    for (int a = 0; a < 4; ++a) {
-      const size_t n = static_cast<size_t>(tets[4 * t + a]);
-      for (int d = 0; d < 3; ++d) gux[d] += u[3 * n] * g[3 * a + d];
-      pbar += 0.25 * p[n];
-    }
-    for (int a = 0; a < 4; ++a)
-      if (on_wall[tets[4 * t + a]])
-        reaction += vol[t] * (mu * (gux[0] * g[3 * a] + gux[1] * g[3 * a + 1] + gux[2] * g[3 * a + 2]) -
-                              pbar * g[3 * a]);
-  }
-  return -reaction;
 }
 
 struct DragResult {
@@ -166,7 +134,7 @@ DragResult immersed_sphere_drag(double h) {
     for (int a = 0; a < 4; ++a) ux += u[3 * static_cast<size_t>(tets[4 * k + a])];
     absorbed += sigma[k] * 0.25 * vol[k] * ux;
   }
-  const double held = inner_wall_force(fluid_mesh, solver, kMu);
+  const double held = fluid_test::wall_force_x(fluid_mesh, solver, kMu, "sphere");  // the core's wall
   const double force = absorbed + held;
   double solid_volume = 0.0;
   for (const auto& t : solid_mesh.tets) {

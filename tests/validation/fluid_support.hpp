@@ -155,4 +155,37 @@ inline double wall_force_x(const TetMesh& mesh, const fluid::FluidSolver& solver
   return -reaction;
 }
 
+// Stokes' problem of a sphere in a concentric spherical container (the quarter of it meshed by
+// generate_sphere_shell_mesh: free slip on y = 0 and z = 0, the "sphere" held, the "outer" wall moving at
+// U e_x): creeping flow solved in one step (rho / dt = 1e-8 mu / h^2), and the exact drag's container
+// correction K(lambda = R / b) (Cunningham 1910, Williams 1915; Happel & Brenner 1965, sec. 4-22), with
+// F = 6 pi mu R U K.
+inline fluid::FluidSettings stokes_container_settings(double mu) {
+  fluid::FluidSettings s;
+  s.rho = 1.0;
+  s.mu = mu;
+  s.dt = 1e8;
+  s.convection = false;
+  s.supg = false;
+  s.picard_max_iterations = 2;
+  s.picard_tol = 1e-6;
+  return s;
+}
+inline std::vector<fluid::FluidBoundary> stokes_container_boundaries(double speed) {
+  using fluid::BoundaryKind;
+  return {{"ymin", BoundaryKind::free_slip, {}, {}},
+          {"zmin", BoundaryKind::free_slip, {}, {}},
+          {"sphere", BoundaryKind::no_slip, {}, {}},
+          {"outer",
+           BoundaryKind::velocity,
+           [speed](const fluid::Vec3&, double) {
+             return fluid::Vec3{speed, 0, 0};
+           },
+           {}}};
+}
+inline double container_correction(double lambda) {
+  const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda, l6 = l5 * lambda;
+  return (1 - l5) / (1 - 2.25 * lambda + 2.5 * l3 - 2.25 * l5 + l6);
+}
+
 }  // namespace rift::fluid_test

@@ -36,16 +36,8 @@
 namespace rift {
 namespace {
 
-using fluid::BoundaryKind;
-using fluid::FluidBoundary;
 using fluid::FluidSettings;
 using fluid::FluidSolver;
-using fluid::Vec3;
-
-double container_correction(double lambda) {
-  const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda, l6 = l5 * lambda;
-  return (1 - l5) / (1 - 2.25 * lambda + 2.5 * l3 - 2.25 * l5 + l6);
-}
 
 std::vector<double> flat_nodes(const TetMesh& m) {
   std::vector<double> x;
@@ -101,23 +93,8 @@ DragResult immersed_sphere_drag(double h) {
   const TetMesh solid_mesh = generate_sphere_shell_mesh(ss);
   const std::vector<double> alpha = solid_fraction(fluid_mesh, solid_mesh);
 
-  FluidSettings s;
-  s.rho = 1.0;
-  s.mu = kMu;
-  s.dt = 1e8;  // rho / dt = 1e-8 mu / h^2: one steady Stokes solve
-  s.convection = false;
-  s.supg = false;
-  s.picard_max_iterations = 2;
-  s.picard_tol = 1e-6;
-  std::vector<FluidBoundary> bcs{{"ymin", BoundaryKind::free_slip, {}, {}},
-                                 {"zmin", BoundaryKind::free_slip, {}, {}},
-                                 {"sphere", BoundaryKind::no_slip, {}, {}},
-                                 {"outer",
-                                  BoundaryKind::velocity,
-                                  [](const Vec3&, double) {
-                                    return Vec3{kU, 0, 0};
-                                  },
-                                  {}}};
+  const FluidSettings s = fluid_test::stokes_container_settings(kMu);
+  const auto bcs = fluid_test::stokes_container_boundaries(kU);
   FluidSolver solver(fluid_mesh, s, bcs);
   const double sigma0 = 1e6 * kMu / (kR * kR);
   auto sigma = solver.sigma();
@@ -146,7 +123,8 @@ DragResult immersed_sphere_drag(double h) {
   // The quarter ball of radius R_s has volume pi R_s^3 / 3, less the solid's inner hole 0.75 R.
   const double inner = 0.75;
   const double r_solid = std::cbrt(3.0 * solid_volume / std::numbers::pi + inner * inner * inner);
-  const double exact = 6 * std::numbers::pi * kMu * r_solid * kU * container_correction(r_solid / kB);
+  const double exact =
+      6 * std::numbers::pi * kMu * r_solid * kU * fluid_test::container_correction(r_solid / kB);
   DragResult r;
   r.error = 4.0 * force / exact - 1.0;
   r.fluid_tets = alpha.size();

@@ -30,20 +30,12 @@
 namespace rift {
 namespace {
 
-using fluid::BoundaryKind;
-using fluid::FluidBoundary;
 using fluid::FluidSettings;
 using fluid::FluidSolver;
-using fluid::Vec3;
-
-double container_correction(double lambda) {
-  const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda, l6 = l5 * lambda;
-  return (1 - l5) / (1 - 2.25 * lambda + 2.5 * l3 - 2.25 * l5 + l6);
-}
 
 TEST(FluidSphereDrag, StokesDragInASphericalContainer) {
   // Container correction check against the first-order wall effect K = 1 + 9/4 lambda.
-  EXPECT_NEAR(container_correction(1e-4), 1 + 2.25e-4, 1e-7);
+  EXPECT_NEAR(fluid_test::container_correction(1e-4), 1 + 2.25e-4, 1e-7);
   constexpr double kR = 1.0, kB = 8.0, kMu = 1.0, kU = 1.0;
   SphereShellSpec spec;
   spec.radius = kR;
@@ -57,23 +49,8 @@ TEST(FluidSphereDrag, StokesDragInASphericalContainer) {
   const TetMesh mesh = generate_sphere_shell_mesh(spec);
   const auto t1 = std::chrono::steady_clock::now();
 
-  FluidSettings s;
-  s.rho = 1.0;
-  s.mu = kMu;
-  s.dt = 1e8;
-  s.convection = false;
-  s.supg = false;
-  s.picard_max_iterations = 2;
-  s.picard_tol = 1e-6;
-  std::vector<FluidBoundary> bcs{{"ymin", BoundaryKind::free_slip, {}, {}},
-                                 {"zmin", BoundaryKind::free_slip, {}, {}},
-                                 {"sphere", BoundaryKind::no_slip, {}, {}},
-                                 {"outer",
-                                  BoundaryKind::velocity,
-                                  [](const Vec3&, double) {
-                                    return Vec3{kU, 0, 0};
-                                  },
-                                  {}}};
+  const FluidSettings s = fluid_test::stokes_container_settings(kMu);
+  const auto bcs = fluid_test::stokes_container_boundaries(kU);
   FluidSolver solver(mesh, s, bcs);
   const fluid::FluidStepReport rep = solver.step();
   const auto t2 = std::chrono::steady_clock::now();
@@ -94,7 +71,7 @@ TEST(FluidSphereDrag, StokesDragInASphericalContainer) {
   const double h_outer = std::min(spec.size_max, spec.size_min + spec.grading * (kB - kR));
   EXPECT_LE(volume / shell, 1.0 + 1e-12);
   EXPECT_GE(volume / shell, 1.0 - 0.3 * h_outer / kB);
-  const double k = container_correction(kR / kB);
+  const double k = fluid_test::container_correction(kR / kB);
   const double exact = 6 * std::numbers::pi * kMu * kR * kU * k;
   const double err = drag / exact - 1.0;
   std::printf(

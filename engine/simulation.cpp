@@ -363,7 +363,7 @@ RunResult Simulation::run() {
         result.stop_reason = "stop_after_step";
         break;
       }
-      progress.update(step_, time());
+      progress.update(step_, time(), progress_quantities_);
     }
   } catch (const Error& e) {
     observe_every_step_ = true;
@@ -438,6 +438,30 @@ void Simulation::write_output() {
   output_seconds_ += seconds_since(t0);
 }
 
+namespace {
+
+// What the progress line shows beside the step: the scene's key quantities from the latest metrics row
+// (values[0], values[1] are step and time), those the run has.
+std::string key_quantities(const std::vector<std::string>& names, const std::vector<double>& values) {
+  static constexpr std::pair<const char*, const char*> kShown[] = {
+      {"solid_broken_joints", "broken {:.0f}"},
+      {"flow_well_pressure", "well {:.4g} MPa"},
+      {"fluid_solid_inlet_pressure", "inlet {:.4g} MPa"},
+      {"fluid_pressure_max", "fluid p max {:.4g} MPa"},
+  };
+  std::string out;
+  for (const auto& [name, format] : kShown)
+    for (size_t i = 0; i < names.size() && i + 2 < values.size(); ++i)
+      if (names[i] == name) {
+        const bool pressure = std::string_view(format).find("MPa") != std::string_view::npos;
+        out += (out.empty() ? "" : ", ") +
+               fmt::format(fmt::runtime(format), values[i + 2] * (pressure ? 1e-6 : 1.0));
+      }
+  return out;
+}
+
+}  // namespace
+
 void Simulation::record_metrics() {
   std::vector<std::pair<std::string, double>> row;
   for (const auto& m : world_->models) m->metrics(time(), row);
@@ -448,6 +472,7 @@ void Simulation::record_metrics() {
     if (!std::isfinite(value)) refuse_non_finite("the time series' " + name, step_, time());
     values.push_back(value);
   }
+  progress_quantities_ = key_quantities(metric_names_, values);
   metric_rows_.push_back(std::move(values));
 }
 

@@ -89,6 +89,7 @@ class Simulation {
   std::unique_ptr<class CheckpointSet> checkpoints_;
   std::vector<std::string> metric_names_;
   std::vector<std::vector<double>> metric_rows_;
+  std::string progress_quantities_;  // the progress line's physics (key_quantities in simulation.cpp)
   double output_seconds_ = 0.0, checkpoint_seconds_ = 0.0;
   bool has_background_ = false;  // a model runs work beside the graph (Model::before_step)
 };

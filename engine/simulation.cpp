@@ -65,15 +65,26 @@ Simulation::Simulation(Scene scene, RunOptions options)
   }
 }
 
+namespace {
+
+// "a, b, c and 4 more": the first `shown` of a list for a message (an empty name reads "the whole scene").
+std::string some_names(const std::vector<std::string>& names, size_t shown) {
+  std::string out;
+  for (size_t i = 0; i < names.size() && i < shown; ++i)
+    out += (i ? ", " : "") + (names[i].empty() ? std::string("the whole scene") : names[i]);
+  if (names.size() > shown) out += fmt::format(" and {} more", names.size() - shown);
+  return out;
+}
+
+}  // namespace
+
 // A new run never mixes its files with an earlier run's (a longer run's later outputs would stay beside
 // the new ones, and its checkpoints would be taken for this run's): the folder is refused, or, with
 // overwrite, the earlier run's files (Rift's names only) are deleted first.
 void Simulation::refuse_or_clear_earlier_run() {
   const std::vector<std::string> earlier = earlier_run_files(options_.out_dir);
   if (earlier.empty()) return;
-  std::string named;
-  for (size_t i = 0; i < earlier.size() && i < 5; ++i) named += (i ? ", " : "") + earlier[i];
-  if (earlier.size() > 5) named += fmt::format(" and {} more", earlier.size() - 5);
+  const std::string named = some_names(earlier, 5);
   if (!options_.overwrite)
     throw Error("output folder " + options_.out_dir.string() + " holds an earlier run (" + named +
                 "): continue it with --restart latest, write elsewhere with --out, or replace it with "
@@ -229,10 +240,7 @@ void Simulation::restart_from_latest() {
     const std::vector<std::string> keys = differing_keys(meta.resolved_scene, scene_.resolved_yaml);
     extending = only_extension_keys(keys);
     if (!extending) {
-      std::string named;
-      for (size_t i = 0; i < keys.size() && i < 12; ++i)
-        named += (i ? ", " : "") + (keys[i].empty() ? "the whole scene" : keys[i]);
-      if (keys.size() > 12) named += fmt::format(" and {} more", keys.size() - 12);
+      const std::string named = some_names(keys, 12);
       throw Error("--restart latest: " + latest->string() + " was written for scene hash " + meta.scene_hash +
                   ", this scene resolves to " + scene_.hash + "; they differ in " + named +
                   ". A restart continues the same scene; it may change only time.end and output.* (to extend "
@@ -443,20 +451,22 @@ namespace {
 // What the progress line shows beside the step: the scene's key quantities from the latest metrics row
 // (values[0], values[1] are step and time), those the run has.
 std::string key_quantities(const std::vector<std::string>& names, const std::vector<double>& values) {
-  static constexpr std::pair<const char*, const char*> kShown[] = {
-      {"solid_broken_joints", "broken {:.0f}"},
-      {"flow_well_pressure", "well {:.4g} MPa"},
-      {"fluid_solid_inlet_pressure", "inlet {:.4g} MPa"},
-      {"fluid_pressure_max", "fluid p max {:.4g} MPa"},
+  struct Shown {
+    const char* name;
+    const char* format;
+    double scale;  // to the unit in the format
+  };
+  static constexpr Shown kShown[] = {
+      {"solid_broken_joints", "broken {:.0f}", 1.0},
+      {"flow_well_pressure", "well {:.4g} MPa", 1e-6},
+      {"fluid_solid_inlet_pressure", "inlet {:.4g} MPa", 1e-6},
+      {"fluid_pressure_max", "fluid p max {:.4g} MPa", 1e-6},
   };
   std::string out;
-  for (const auto& [name, format] : kShown)
+  for (const Shown& q : kShown)
     for (size_t i = 0; i < names.size() && i + 2 < values.size(); ++i)
-      if (names[i] == name) {
-        const bool pressure = std::string_view(format).find("MPa") != std::string_view::npos;
-        out += (out.empty() ? "" : ", ") +
-               fmt::format(fmt::runtime(format), values[i + 2] * (pressure ? 1e-6 : 1.0));
-      }
+      if (names[i] == q.name)
+        out += (out.empty() ? "" : ", ") + fmt::format(fmt::runtime(q.format), values[i + 2] * q.scale);
   return out;
 }
 

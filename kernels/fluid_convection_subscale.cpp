@@ -13,8 +13,13 @@ double convection_subscale_tau(double speed, double h, double nu, double sigma_o
 void convective_derivative_projection(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                                       std::span<const double> grad, std::span<const double> w,
                                       std::span<double> out) {
-  const size_t nt = volume.size();
-  for (size_t t = 0; t < nt; ++t) {
+  convective_derivative_projection(tet_nodes, volume, grad, w, out, 0, volume.size());
+}
+
+void convective_derivative_projection(std::span<const int32_t> tet_nodes, std::span<const double> volume,
+                                      std::span<const double> grad, std::span<const double> w,
+                                      std::span<double> out, size_t begin, size_t end) {
+  for (size_t t = begin; t < end; ++t) {
     const double v = volume[t];
     if (v <= 0.0) continue;
     const int32_t* nodes = &tet_nodes[4 * t];

@@ -12,6 +12,7 @@
 // a converged steady state does not depend on the time step. eta is lagged one Picard iteration (it is
 // computed from the advecting velocity w = theta u^k + (1 - theta) u^n, the iterate the matrix is built
 // on), so a converged step satisfies the stabilised equations exactly.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -26,5 +27,10 @@ double convection_subscale_tau(double speed, double h, double nu, double sigma_o
 void convective_derivative_projection(std::span<const int32_t> tet_nodes, std::span<const double> volume,
                                       std::span<const double> grad, std::span<const double> w,
                                       std::span<double> out);
+// The same for tets [begin, end): ranges whose tets share no node may run at the same time (the fluid
+// assembly's colouring); each node then receives its contributions in a fixed order.
+void convective_derivative_projection(std::span<const int32_t> tet_nodes, std::span<const double> volume,
+                                      std::span<const double> grad, std::span<const double> w,
+                                      std::span<double> out, size_t begin, size_t end);
 
 }  // namespace rift::kernels

@@ -4,6 +4,7 @@
 #include <bit>
 
 #include "engine/schedule/parallel.hpp"
+#include "kernels/fluid_convection_subscale.hpp"
 
 namespace rift::fluid {
 
@@ -72,6 +73,15 @@ void FluidAssembly::pressure_rhs(const kernels::FluidPressureRhsArgs& a, std::sp
 void FluidAssembly::weighted_gradient(const kernels::WeightedGradientArgs& a, std::span<double> grad) const {
   std::fill(grad.begin(), grad.end(), 0.0);
   for_each_block([&](size_t begin, size_t end) { kernels::p1_weighted_gradient(a, grad, begin, end); });
+}
+
+void FluidAssembly::convective_projection(std::span<const int32_t> tet_nodes, std::span<const double> volume,
+                                          std::span<const double> grad, std::span<const double> w,
+                                          std::span<double> out) const {
+  std::fill(out.begin(), out.end(), 0.0);
+  for_each_block([&](size_t begin, size_t end) {
+    kernels::convective_derivative_projection(tet_nodes, volume, grad, w, out, begin, end);
+  });
 }
 
 }  // namespace rift::fluid

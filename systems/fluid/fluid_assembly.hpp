@@ -32,6 +32,10 @@ class FluidAssembly {
   void pressure_rhs(const kernels::FluidPressureRhsArgs& a, std::span<double> rhs) const;
   // kernels::p1_weighted_gradient, written into grad (3 per node).
   void weighted_gradient(const kernels::WeightedGradientArgs& a, std::span<double> grad) const;
+  // kernels::convective_derivative_projection of w, written into out (3 per node).
+  void convective_projection(std::span<const int32_t> tet_nodes, std::span<const double> volume,
+                             std::span<const double> grad, std::span<const double> w,
+                             std::span<double> out) const;
 
   size_t colours() const { return colour_ptr_.empty() ? 0 : colour_ptr_.size() - 1; }
   // Fixed block size (independent of the thread count, as determinism needs).

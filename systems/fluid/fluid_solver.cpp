@@ -240,8 +240,7 @@ void FluidSolver::update_cell_coefficients() {
 }
 
 void FluidSolver::project_convective_derivative() {
-  std::fill(eta_.begin(), eta_.end(), 0.0);
-  kernels::convective_derivative_projection(tet_nodes_, volume_, grad_, w_, eta_);
+  assembly_.convective_projection(tet_nodes_, volume_, grad_, w_, eta_);
   for (size_t n = 0; n < node_volume_.size(); ++n)
     for (int d = 0; d < 3; ++d) eta_[3 * n + d] /= node_volume_[n];
 }

@@ -22,14 +22,6 @@
 namespace rift {
 namespace {
 
-// The first python3 that imports `modules`: the one on PATH, then Debian's (pyenv may shadow it).
-std::string python_with(const std::string& modules) {
-  for (const char* py : {"python3", "/usr/bin/python3"})
-    if (std::system((std::string(py) + " -c 'import " + modules + "' >/dev/null 2>&1").c_str()) == 0)
-      return py;
-  return {};
-}
-
 // argv: the index, then the expected xx xy xz yy yz zz. Checks the first output's solid grid.
 constexpr const char* kCheck = R"py(
 import sys, os, xml.etree.ElementTree as ET
@@ -65,8 +57,9 @@ std::array<double, 6> known_stress_run(const test::TempDir& dir) {
   return {s[0], s[3], s[5], s[1], s[4], s[2]};
 }
 
-// Runs argv, prints its output, returns its status.
-int run_check(const std::vector<std::string>& argv, const test::TempDir& dir) {
+// Runs argv followed by the six expected values, prints its output, returns its status.
+int run_check(std::vector<std::string> argv, const std::array<double, 6>& tensor6, const test::TempDir& dir) {
+  for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
   const std::filesystem::path log = dir / "check.log";
   const int status = run_program(argv, {}, log);
   std::printf("%s", test::slurp(log).c_str());
@@ -79,9 +72,8 @@ TEST(OutputReaders, StressReadsInTensor6OrderWithH5py) {
   test::TempDir dir;
   const auto tensor6 = known_stress_run(dir);
   std::ofstream(dir / "check.py") << kCheck;
-  std::vector<std::string> argv{py, (dir / "check.py").string(), (dir / "run" / "rift.xdmf").string()};
-  for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
-  EXPECT_EQ(run_check(argv, dir), 0);
+  EXPECT_EQ(run_check({py, (dir / "check.py").string(), (dir / "run" / "rift.xdmf").string()}, tensor6, dir),
+            0);
 }
 
 // meshio reads one grid's index (rift_solid.xdmf, XDMF 3.0) as a time series: the stress at t = 0 in
@@ -109,9 +101,9 @@ TEST(OutputReaders, MeshioReadsOneGridsSeries) {
   test::TempDir dir;
   const auto tensor6 = known_stress_run(dir);
   std::ofstream(dir / "check.py") << kMeshio;
-  std::vector<std::string> argv{py, (dir / "check.py").string(), (dir / "run" / "rift_solid.xdmf").string()};
-  for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
-  EXPECT_EQ(run_check(argv, dir), 0);
+  EXPECT_EQ(
+      run_check({py, (dir / "check.py").string(), (dir / "run" / "rift_solid.xdmf").string()}, tensor6, dir),
+      0);
 }
 
 // ParaView's three XDMF readers (scripts/check_paraview_readers.py), where ParaView is installed.
@@ -121,11 +113,11 @@ TEST(OutputReaders, ParaViewsThreeXdmfReadersShowTheSameStress) {
                     "python3-paraview xvfb); ParaView's readers not checked";
   test::TempDir dir;
   const auto tensor6 = known_stress_run(dir);
-  std::vector<std::string> argv{"xvfb-run", "-a", "pvpython",
-                                std::string(RIFT_SOURCE_DIR) + "/scripts/check_paraview_readers.py",
-                                (dir / "run").string()};
-  for (double v : tensor6) argv.push_back(fmt::format("{:.17g}", v));
-  EXPECT_EQ(run_check(argv, dir), 0);
+  EXPECT_EQ(
+      run_check({"xvfb-run", "-a", "pvpython",
+                 std::string(RIFT_SOURCE_DIR) + "/scripts/check_paraview_readers.py", (dir / "run").string()},
+                tensor6, dir),
+      0);
 }
 
 }  // namespace

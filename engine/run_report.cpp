@@ -48,9 +48,8 @@ std::string run_report(const nlohmann::json& summary) {
   if (metrics.contains("fracture_flow")) {
     const auto& f = metrics["fracture_flow"];
     out += fmt::format(
-        "  fracture flow: well pressure {:.4g} Pa, injected {:.4g} m^3, in the cracks {:.4g} m^3 (crack "
-        "volume "
-        "{:.4g} m^3), wet area {:.4g} of {:.4g} m^2\n",
+        "  fracture flow: well pressure {:.4g} Pa, injected {:.4g} m^3, fluid in the well and the cracks "
+        "{:.4g} m^3 (crack volume {:.4g} m^3), wet area {:.4g} of {:.4g} m^2\n",
         number(f, "well_pressure"), number(f, "injected_volume"), number(f, "fluid_volume"),
         number(f, "crack_volume"), number(f, "wet_area"), number(f, "crack_area"));
   }

@@ -6,8 +6,9 @@ packages=(cmake ninja-build g++ ccache pkg-config
           libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
           libgtest-dev libgmock-dev libbenchmark-dev hdf5-tools
           libhypre-dev libopenmpi-dev
-          python3-matplotlib python3-h5py python3-meshio)  # matplotlib: the plot of rift sweep; h5py, meshio:
-                                                           # the readers tests; h5py: bench studies
+          python3-matplotlib python3-h5py python3-meshio   # matplotlib: rift plot and the sweep's plot;
+                                                           # h5py, meshio: the readers tests, bench studies
+          paraview python3-paraview xvfb xauth)            # rift render, ParaView's readers test (headless)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

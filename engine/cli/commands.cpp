@@ -122,6 +122,16 @@ int plot(const std::string& run_dir, const std::string& out_dir) {
   return 0;
 }
 
+int render(const std::string& run_dir, const RenderOptions& options) {
+  const RenderResult r = render_run(run_dir, options);
+  for (const auto& p : r.pictures) std::cout << p.string() << "\n";
+  if (!r.problem.empty()) {
+    std::cerr << "rift render: " << r.problem << "\n";
+    return 2;
+  }
+  return 0;
+}
+
 int sweep(const SweepArgs& args) {
   init_logging(false, true);
   if (args.scene.scene.empty()) {

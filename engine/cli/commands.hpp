@@ -1,10 +1,12 @@
 #pragma once
-// The subcommands behind `rift`: run, check, info, graph, sweep, plot. Each returns the process exit code:
-// 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options), 130 stopped by a
-// signal (a checkpoint was written; continue with --restart latest).
+// The subcommands behind `rift`: run, check, info, graph, sweep, plot, render. Each returns the process exit
+// code: 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options), 130 stopped by
+// a signal (a checkpoint was written; continue with --restart latest).
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "engine/render/run_render.hpp"
 
 namespace rift::cli {
 
@@ -37,5 +39,7 @@ int info();
 int graph(const SceneArgs& args, int threads);
 // rift plot RUN_DIR [--out DIR]: PNGs of the run's time series (engine/plot/run_plot.hpp).
 int plot(const std::string& run_dir, const std::string& out_dir);
+// rift render RUN_DIR [options]: field pictures drawn by ParaView (engine/render/run_render.hpp).
+int render(const std::string& run_dir, const RenderOptions& options);
 
 }  // namespace rift::cli

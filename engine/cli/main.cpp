@@ -55,6 +55,27 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("run", plot_dir, "a run's output folder (with timeseries.csv)")->required();
   plot_cmd->add_option("--out,-o", plot_out, "folder for the pictures (default RUN/plots)");
 
+  std::string render_dir;
+  rift::RenderOptions render_options;
+  auto* render_cmd = app.add_subcommand(
+      "render", "Field pictures of a run, drawn headless by ParaView: a cut coloured by a field, the cracks");
+  render_cmd->add_option("run", render_dir, "a run's output folder (with rift.series.json)")->required();
+  render_cmd->add_option("--out,-o", render_options.out_dir,
+                         "folder for the pictures (default RUN/pictures)");
+  render_cmd->add_option(
+      "--field", render_options.field,
+      "NAME[:COMPONENT], e.g. stress:yy, principal_stress:max (default), velocity:magnitude");
+  render_cmd
+      ->add_option("--normal", render_options.normal, "axis normal to the cut plane: x, y or z (default)")
+      ->check(CLI::IsMember({"x", "y", "z"}));
+  render_cmd->add_option("--at", render_options.at,
+                         "the cut plane's position along its normal, m (default: centre)");
+  render_cmd->add_option("--times", render_options.times,
+                         "'last' (default), 'all', or times in s separated by commas (nearest outputs)");
+  render_cmd->add_option("--size", render_options.size, "picture size WIDTHxHEIGHT (default 1280x960)");
+  render_cmd->add_option("--range", render_options.range,
+                         "MIN,MAX of the colour map in display units (default: 1st-99th percentile)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -69,6 +90,7 @@ int main(int argc, char** argv) {
     if (*graph_cmd) return graph(graph_args, graph_threads);
     if (*sweep_cmd) return sweep(sweep_args);
     if (*plot_cmd) return plot(plot_dir, plot_out);
+    if (*render_cmd) return render(render_dir, render_options);
   } catch (const std::bad_alloc&) {
     std::cerr << "rift: internal error: out of memory\n";
     return 1;

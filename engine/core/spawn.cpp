@@ -3,8 +3,12 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdlib>
+#include <string_view>
 
 extern char** environ;
 
@@ -52,6 +56,21 @@ std::string python_with(const std::string& modules) {
   for (const char* py : {"python3", "/usr/bin/python3"})
     if (run_program({py, "-c", "import " + modules}) == 0) return py;
   return "";
+}
+
+std::string find_program(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string_view dirs = path ? path : "";
+  std::string candidates;
+  for (size_t start = 0; start <= dirs.size();) {
+    const size_t end = std::min(dirs.find(':', start), dirs.size());
+    const std::string dir(dirs.substr(start, end - start));
+    const std::string file = (dir.empty() ? std::string(".") : dir) + "/" + name;
+    if (::access(file.c_str(), X_OK) == 0 && std::filesystem::is_regular_file(file)) return file;
+    start = end + 1;
+  }
+  const std::string fallback = "/usr/bin/" + name;
+  return ::access(fallback.c_str(), X_OK) == 0 ? fallback : std::string();
 }
 
 }  // namespace rift

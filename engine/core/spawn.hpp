@@ -14,6 +14,9 @@ namespace rift {
 int run_program(const std::vector<std::string>& argv, const std::filesystem::path& cwd = {},
                 const std::filesystem::path& log = {});
 
+// The path of the executable `name` on PATH, else in /usr/bin; empty when there is none.
+std::string find_program(const std::string& name);
+
 // The first Python that imports `modules` (e.g. "matplotlib"): the one on PATH, else Debian's
 // /usr/bin/python3 (pyenv or a venv may shadow it). Empty when neither does.
 std::string python_with(const std::string& modules);

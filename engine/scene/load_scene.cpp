@@ -130,14 +130,15 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
 }  // namespace
 
 SceneLoadResult read_scene_text(const std::string& yaml, const std::string& file_label,
-                                const std::string& base_dir, const std::vector<std::string>& overrides) {
+                                const std::string& base_dir, const std::vector<std::string>& overrides,
+                                SchemaRecorder* recorder) {
   SceneLoadResult result;
   YamlParseResult parsed = parse_yaml_tree(yaml, file_label);
   if (parsed.error) {
     result.errors.push_back(*parsed.error);
     return result;
   }
-  ReadContext ctx;
+  ReadContext ctx(recorder);
   apply_overrides(parsed.root, overrides, ctx);
   Scene scene = read_scene_tree(ctx, parsed.root, file_label, base_dir);
   result.errors = ctx.errors();

@@ -27,10 +27,14 @@ inline constexpr uint64_t scene_file_max_bytes = 4u << 20;
 // stopping at the first.
 SceneLoadResult read_scene_file(const std::string& path, const std::vector<std::string>& overrides = {});
 
+class SchemaRecorder;
+
 // The same for YAML text: `file_label` names it in diagnostics and becomes Scene::source_file;
-// relative mesh paths start at `base_dir`.
+// relative mesh paths start at `base_dir`. With a `recorder`, every key's rule is reported to it as it
+// is read (schema_recorder.hpp).
 SceneLoadResult read_scene_text(const std::string& yaml, const std::string& file_label,
-                                const std::string& base_dir, const std::vector<std::string>& overrides = {});
+                                const std::string& base_dir, const std::vector<std::string>& overrides = {},
+                                SchemaRecorder* recorder = nullptr);
 
 // read_scene_file, throwing rift::Error with every diagnostic, one per line, when there is any.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "engine/scene/schema_recorder.hpp"
 #include "engine/scene/suggest.hpp"
 #include "engine/scene/yaml_reader.hpp"
 
@@ -36,7 +37,8 @@ MapReader::MapReader(ReadContext& ctx, const YamlNode* node, std::string path, s
       node_(node),
       path_(std::move(path)),
       doc_path_(std::move(doc_path)),
-      where_(std::move(where)) {}
+      where_(std::move(where)),
+      instance_(ctx.recorder() ? ctx.recorder()->new_instance() : 0) {}
 
 MapReader MapReader::silenced(ReadContext& ctx, std::string path, std::string doc_path,
                               SourceLocation where) {
@@ -54,6 +56,7 @@ std::string MapReader::doc_key_path(std::string_view key) const {
 }
 
 bool MapReader::has(std::string_view key) const {
+  if (ctx_->recorder()) ctx_->recorder()->presence_tested(instance_, doc_path_, key);
   return find_entry(node_, key) != nullptr;
 }
 
@@ -76,9 +79,29 @@ const YamlEntry* MapReader::lookup(std::string_view key) {
   return silent_ ? nullptr : find_entry(node_, key);
 }
 
+MapReader MapReader::unused() {
+  MapReader view = silenced(*ctx_, path_, doc_path_, where_);
+  view.instance_ = instance_;
+  view.origin_ = this;
+  return view;
+}
+
 void MapReader::declare(std::string_view key) {
+  if (origin_) return origin_->declare(key);
   ctx_->consumed(join_path(doc_path_, key));
+  if (ctx_->recorder()) ctx_->recorder()->known(instance_, doc_path_, key);
   if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+}
+
+void MapReader::default_varies(std::string_view key) {
+  if (ctx_->recorder()) ctx_->recorder()->default_varies(doc_path_, key);
+}
+
+void MapReader::record(std::string_view key, const KeyRule& rule, bool required,
+                       std::optional<std::string> default_json) {
+  // Through unused() the key belongs to a variant the scene does not use: not required here.
+  ctx_->recorder()->read(instance_, doc_path_, key,
+                         KeyRead{rule, required && !origin_, std::move(default_json)});
 }
 
 bool MapReader::absent(std::string_view key, const YamlEntry* e, bool required, const std::string& expected) {
@@ -105,6 +128,8 @@ void MapReader::error(std::string_view key, std::string expected, std::string hi
 
 double MapReader::real(std::string_view key, const RealRule& rule, std::optional<double> fallback) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, number_key(rule), !fallback, fallback ? std::optional(json_number(*fallback)) : std::nullopt);
   if (absent(key, e, !fallback, rule.describe())) return fallback.value_or(0.0);
   auto v = read_real(*ctx_, e->value, key_path(key), rule);
   if (!v) failed(key);
@@ -113,6 +138,7 @@ double MapReader::real(std::string_view key, const RealRule& rule, std::optional
 
 std::optional<double> MapReader::optional_real(std::string_view key, const RealRule& rule) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder()) record(key, number_key(rule, /*nullable=*/true), false, std::nullopt);
   if (!e || e->value.kind == YamlNode::Kind::null) return std::nullopt;  // null: "not set" on purpose
   auto v = read_real(*ctx_, e->value, key_path(key), rule);
   if (!v) failed(key);
@@ -121,6 +147,9 @@ std::optional<double> MapReader::optional_real(std::string_view key, const RealR
 
 int64_t MapReader::integer(std::string_view key, const IntRule& rule, std::optional<int64_t> fallback) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, integer_key(rule), !fallback,
+           fallback ? std::optional(json_integer(*fallback)) : std::nullopt);
   if (absent(key, e, !fallback, rule.describe())) return fallback.value_or(0);
   auto v = read_integer(*ctx_, e->value, key_path(key), rule);
   if (!v) failed(key);
@@ -129,6 +158,8 @@ int64_t MapReader::integer(std::string_view key, const IntRule& rule, std::optio
 
 bool MapReader::boolean(std::string_view key, std::optional<bool> fallback) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, boolean_key(), !fallback, fallback ? std::optional(json_boolean(*fallback)) : std::nullopt);
   if (absent(key, e, !fallback, "true or false")) return fallback.value_or(false);
   auto v = read_boolean(*ctx_, e->value, key_path(key));
   if (!v) failed(key);
@@ -137,6 +168,9 @@ bool MapReader::boolean(std::string_view key, std::optional<bool> fallback) {
 
 std::string MapReader::string(std::string_view key, std::optional<std::string> fallback, bool allow_empty) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, string_key(allow_empty), !fallback,
+           fallback ? std::optional(json_string(*fallback)) : std::nullopt);
   if (absent(key, e, !fallback, allow_empty ? "a string" : "a non-empty string"))
     return fallback.value_or("");
   auto v = read_string(*ctx_, e->value, key_path(key), allow_empty);
@@ -147,6 +181,9 @@ std::string MapReader::string(std::string_view key, std::optional<std::string> f
 size_t MapReader::choice(std::string_view key, std::span<const std::string_view> options,
                          std::optional<size_t> fallback) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, choice_key(options), !fallback,
+           fallback ? std::optional(json_string(std::string(options[*fallback]))) : std::nullopt);
   if (absent(key, e, !fallback, "one of " + join_names(options))) return fallback.value_or(0);
   auto v = read_choice(*ctx_, e->value, key_path(key), options);
   if (!v) failed(key);
@@ -156,6 +193,9 @@ size_t MapReader::choice(std::string_view key, std::span<const std::string_view>
 std::array<double, 3> MapReader::vec3(std::string_view key, const RealRule& rule,
                                       std::optional<std::array<double, 3>> fallback) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, vec3_key(rule), !fallback,
+           fallback ? std::optional(json_numbers({fallback->begin(), fallback->end()})) : std::nullopt);
   if (absent(key, e, !fallback, "a list of 3 numbers (x, y, z), each " + rule.describe()))
     return fallback.value_or(std::array<double, 3>{});
   auto v = read_vec3(*ctx_, e->value, key_path(key), rule);
@@ -166,6 +206,9 @@ std::array<double, 3> MapReader::vec3(std::string_view key, const RealRule& rule
 std::vector<std::string> MapReader::string_list(std::string_view key, std::vector<std::string> fallback) {
   const std::string expected = "a list of at least one non-empty string";
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder())
+    record(key, string_list_key(), fallback.empty(),
+           fallback.empty() ? std::nullopt : std::optional(json_strings(fallback)));
   if (absent(key, e, fallback.empty(), expected)) return fallback;
   if (e->value.kind != YamlNode::Kind::sequence || e->value.items.empty()) {
     ctx_->error(e->value.where, key_path(key), expected, describe_found(e->value));
@@ -187,6 +230,11 @@ std::vector<size_t> MapReader::choice_list(std::string_view key, std::span<const
                                            std::vector<size_t> fallback, size_t min_items) {
   const std::string expected = "a list of distinct names among " + join_names(options);
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder()) {
+    std::vector<std::string> names;
+    for (size_t i : fallback) names.emplace_back(options[i]);
+    record(key, choice_list_key(options, min_items), false, json_strings(names));
+  }
   if (absent(key, e, false, expected)) return fallback;
   if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
     ctx_->error(e->value.where, key_path(key),
@@ -215,6 +263,12 @@ std::vector<size_t> MapReader::choice_list(std::string_view key, std::span<const
 TimeFunction MapReader::time_function(std::string_view key, const std::string& unit,
                                       std::optional<TimeFunction> fallback) {
   const YamlEntry* e = lookup(key);
+  if (ctx_->recorder()) {
+    // A default is stated as a number, the constant form; the reader has no other form as a default.
+    const bool constant = fallback && fallback->kind == TimeFunction::Kind::constant;
+    record(key, time_function_key(unit), !fallback,
+           constant ? std::optional(json_number(fallback->value)) : std::nullopt);
+  }
   const std::string in_unit = unit.empty() ? "" : " in " + unit;
   if (absent(key, e, !fallback, "a time function" + in_unit + " (a number, {ramp: ...} or {table: ...})"))
     return fallback.value_or(TimeFunction{});
@@ -226,8 +280,9 @@ TimeFunction MapReader::time_function(std::string_view key, const std::string& u
 MapReader MapReader::section(std::string_view key, bool required, const std::string* doc_path) {
   const YamlEntry* e = lookup(key);
   const std::string path = key_path(key), doc = doc_path ? *doc_path : join_path(doc_path_, key);
+  if (ctx_->recorder()) record(key, section_key(doc), required, std::nullopt);
   if (!e) {
-    if (!required) return MapReader(*ctx_, nullptr, path, doc, where_);
+    if (!required && !silent_) return MapReader(*ctx_, nullptr, path, doc, where_);
     if (!silent_) ctx_->error(where_, path, "a section (mapping) '" + std::string(key) + "'", kMissing);
     failed(key);
     return silenced(*ctx_, path, doc, where_);
@@ -245,9 +300,11 @@ MapReader MapReader::section(std::string_view key, bool required, const std::str
 std::vector<MapReader> MapReader::section_list(std::string_view key, size_t min_items) {
   const YamlEntry* e = lookup(key);
   const std::string path = key_path(key), doc = join_path(doc_path_, key);
+  if (ctx_->recorder()) record(key, section_list_key(doc, min_items), min_items > 0, std::nullopt);
   const std::string expected = min_items > 0
                                    ? "a list of at least " + std::to_string(min_items) + " mapping(s)"
                                    : "a list of mappings";
+  if (origin_) return {silenced(*ctx_, path + "[0]", doc, where_)};  // see unused()
   if (absent(key, e, min_items > 0, expected)) return {};
   if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
     ctx_->error(e->value.where, path, expected, describe_found(e->value));

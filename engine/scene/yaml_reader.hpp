@@ -3,7 +3,8 @@
 // key; anything else becomes a diagnostic with file:line:column, key path, what was expected and what
 // was found, and reading goes on so one pass reports every problem of a file. A MapReader remembers
 // which keys were asked for, so finish() can name unknown keys (with a "did you mean") and the docs
-// test can check that every key the reader knows is documented.
+// test can check that every key the reader knows is documented. With a SchemaRecorder on the context,
+// every accessor also reports the key's rule (schema_recorder.hpp), from which `rift schema` is made.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -19,19 +20,27 @@
 
 namespace rift {
 
+class SchemaRecorder;
+struct KeyRule;
+
 // Diagnostics and bookkeeping shared by every reader of one scene.
 class ReadContext {
  public:
+  ReadContext() = default;
+  explicit ReadContext(SchemaRecorder* recorder) : recorder_(recorder) {}
+
   void error(const SourceLocation& where, std::string key_path, std::string expected, std::string found,
              std::string hint = {});
   // Records a key path without list indices (e.g. "solid.materials.density") as known to the reader.
   void consumed(const std::string& doc_path) { consumed_.insert(doc_path); }
   const std::vector<SceneDiagnostic>& errors() const { return errors_; }
   const std::set<std::string>& consumed_keys() const { return consumed_; }
+  SchemaRecorder* recorder() const { return recorder_; }  // null: nothing is recorded
 
  private:
   std::vector<SceneDiagnostic> errors_;
   std::set<std::string> consumed_;
+  SchemaRecorder* recorder_ = nullptr;
 };
 
 // The accepted range of a real number and its unit, as error messages state them.
@@ -42,6 +51,7 @@ struct RealRule {
 
   bool accepts(double v) const;
   std::string describe() const;  // e.g. "a number in Pa, > 0", "a number, in [0, 0.5)"
+  bool operator==(const RealRule&) const = default;
 };
 RealRule any_real(std::string unit);
 RealRule positive(std::string unit);      // > 0
@@ -50,6 +60,7 @@ RealRule non_negative(std::string unit);  // >= 0
 struct IntRule {
   int64_t min = INT64_MIN, max = INT64_MAX;
   std::string describe() const;  // e.g. "an integer >= 1"
+  bool operator==(const IntRule&) const = default;
 };
 
 // Readers of one value at `path`; each reports a diagnostic and returns nullopt when the value is wrong.
@@ -79,8 +90,10 @@ class MapReader {
   MapReader(ReadContext& ctx, const YamlNode* node, std::string path, std::string doc_path,
             SourceLocation where);
 
-  bool has(std::string_view key) const;  // present in the file (null values count)
-  bool ok(std::string_view key) const;   // read without a diagnostic
+  // Present in the file (null values count). Asking tells the recorder that the reader handles the
+  // key's absence: it is not required (schema_recorder.hpp).
+  bool has(std::string_view key) const;
+  bool ok(std::string_view key) const;  // read without a diagnostic
   std::string key_path(std::string_view key) const;
   std::string doc_key_path(std::string_view key) const;  // without list indices, as the docs name it
   SourceLocation where(std::string_view key) const;      // the value's location, else the section's
@@ -106,7 +119,8 @@ class MapReader {
   TimeFunction time_function(std::string_view key, const std::string& unit,
                              std::optional<TimeFunction> fallback);
   // A nested mapping; a null value reads as an empty one. Not a mapping, or required and absent:
-  // reported here, and the returned reader stays silent so the mistake is not repeated per key.
+  // reported here, and the returned reader stays silent so the mistake is not repeated per key (as it
+  // does in a silent reader).
   // `doc_path`: the documented path of its keys when they are another section's (fluid.mesh reads as mesh).
   MapReader section(std::string_view key, bool required, const std::string* doc_path = nullptr);
   const std::string& path() const { return path_; }
@@ -115,6 +129,15 @@ class MapReader {
 
   void forbid(std::string_view key, const std::string& why);  // a known key that must be absent here
   void declare(std::string_view key);  // a known key this pass does not read (still counts as consumed)
+  // The default just read for `key` depends on other values (10 x young, block<i>): the schema states none.
+  void default_varies(std::string_view key);
+  // A silent view of this mapping for the keys of a variant the scene does not use (a cylinder's keys
+  // in a box scene, theta when scheme is given): reading a key through it declares the key here and
+  // reports its rule to the recorder as not required here; every accessor returns its fallback and
+  // nothing is reported to the user. Its section() is a silenced reader and its section_list() one
+  // silenced item, so the caller's item reader declares the item's keys. Use it at once: it refers to
+  // this reader.
+  MapReader unused();
   // A diagnostic about the key's value (for checks across keys), found = describe_found(value).
   void error(std::string_view key, std::string expected, std::string hint = {});
   // Reports keys never asked for (typos) and duplicate keys. Call once, after every key was read.
@@ -129,6 +152,9 @@ class MapReader {
   // For an absent or null key: reports it if required; true when the caller should use the fallback.
   bool absent(std::string_view key, const YamlEntry* e, bool required, const std::string& expected);
   void failed(std::string_view key) { failed_.insert(std::string(key)); }
+  // Reports the key's rule to the context's recorder, when there is one.
+  void record(std::string_view key, const KeyRule& rule, bool required,
+              std::optional<std::string> default_json);
 
   ReadContext* ctx_;
   const YamlNode* node_;
@@ -136,7 +162,9 @@ class MapReader {
   SourceLocation where_;
   std::vector<std::string> known_;
   std::set<std::string, std::less<>> failed_;
-  bool silent_ = false;  // the mapping itself is wrong and was reported already
+  bool silent_ = false;          // the mapping itself is wrong and was reported already
+  int instance_ = 0;             // this mapping's number for the recorder (0: no recorder)
+  MapReader* origin_ = nullptr;  // unused(): the reader whose keys this view declares
 };
 
 }  // namespace rift

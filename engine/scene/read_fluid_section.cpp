@@ -14,6 +14,25 @@ constexpr std::array<std::string_view, 2> kCouplings{"schur_gmres", "projection"
 constexpr std::array<std::string_view, 2> kOnFailure{"stop", "continue"};
 constexpr std::array<std::string_view, 2> kSubscales{"quasi_static", "dynamic"};
 
+// fluid.adapt's own keys: how often the mesh is remade, and around which parts of the solid's surface.
+FluidAdaptSpec read_adapt(MapReader& a) {
+  FluidAdaptSpec adapt{a.integer("interval", IntRule{0, INT32_MAX}, 0)};
+  adapt.boundary = adapt.notch = adapt.fracture = false;
+  for (const std::string& name : a.string_list("surfaces", {"boundary", "notch", "fracture"})) {
+    if (name == "boundary")
+      adapt.boundary = true;
+    else if (name == "notch")
+      adapt.notch = true;
+    else if (name == "fracture")
+      adapt.fracture = true;
+    else
+      a.error("surfaces",
+              "a list of boundary, notch and fracture (the parts of the solid's surface to refine at)");
+  }
+  a.finish();
+  return adapt;
+}
+
 // Keys that apply to one boundary type only are forbidden for the others (as in the solid section).
 FluidBoundarySpec read_boundary(MapReader& b) {
   using Kind = FluidBoundarySpec::Kind;
@@ -48,27 +67,29 @@ FluidBoundarySpec read_boundary(MapReader& b) {
 
 FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
   FluidSpec f;
+  static const std::string kMeshDoc = "mesh";  // the same keys as the top-level mesh section
   if (sec.has("mesh")) {
-    static const std::string kMeshDoc = "mesh";  // the same keys as the top-level mesh section
     MapReader m = sec.section("mesh", false, &kMeshDoc);
     f.mesh = read_mesh_section(m, base_dir);
   } else {
-    sec.declare("mesh");
+    sec.unused().section("mesh", false, &kMeshDoc);  // its keys are the top-level mesh's
   }
   f.density = sec.real("density", positive("kg/m^3"), std::nullopt);
   f.viscosity = sec.real("viscosity", positive("Pa s"), std::nullopt);
   f.dt = sec.real("dt", positive("s"), std::nullopt);
-  // theta or scheme, not both.
+  // theta or scheme, not both; the one not read is read through sec.unused(), for its rule.
+  const auto theta = [](auto&& r) { return r.real("theta", RealRule{"", 0.5, 1.0, false, false}, 1.0); };
+  const auto scheme = [](auto&& r) { return r.choice("scheme", kSchemes, 0) == 0 ? 1.0 : 0.5; };
   if (sec.has("theta") && sec.has("scheme")) {
     sec.error("scheme", "either theta or scheme, not both");
-    sec.declare("theta");
-    sec.declare("scheme");
+    theta(sec.unused());
+    scheme(sec.unused());
   } else if (sec.has("theta")) {
-    f.theta = sec.real("theta", RealRule{"", 0.5, 1.0, false, false}, 1.0);
-    sec.declare("scheme");
+    f.theta = theta(sec);
+    scheme(sec.unused());
   } else {
-    f.theta = sec.choice("scheme", kSchemes, 0) == 0 ? 1.0 : 0.5;
-    sec.declare("theta");
+    f.theta = scheme(sec);
+    theta(sec.unused());
   }
   f.convection = sec.boolean("convection", true);
   f.supg = sec.boolean("supg", true);
@@ -103,20 +124,7 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
       }
   if (sec.has("adapt")) {
     MapReader a = sec.section("adapt", false);
-    f.adapt = FluidAdaptSpec{a.integer("interval", IntRule{0, INT32_MAX}, 0)};
-    f.adapt->boundary = f.adapt->notch = f.adapt->fracture = false;
-    for (const std::string& name : a.string_list("surfaces", {"boundary", "notch", "fracture"})) {
-      if (name == "boundary")
-        f.adapt->boundary = true;
-      else if (name == "notch")
-        f.adapt->notch = true;
-      else if (name == "fracture")
-        f.adapt->fracture = true;
-      else
-        a.error("surfaces",
-                "a list of boundary, notch and fracture (the parts of the solid's surface to refine at)");
-    }
-    a.finish();
+    f.adapt = read_adapt(a);
     // It remakes the mesh with the box generator's sizing, measured from the solid's surface.
     const MeshGenerateSpec* g = f.mesh && f.mesh->generate ? &*f.mesh->generate : nullptr;
     if (!g || g->shape != MeshGenerateSpec::Shape::box || g->cells || !g->notches.empty())
@@ -125,7 +133,8 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
           "with fluid.adapt, a fluid.mesh.generate box with size_min and size_max and no cells or notches "
           "(the adaptive mesh is that box, its size_min at the solid's surface)");
   } else {
-    sec.declare("adapt");
+    MapReader unused = sec.unused().section("adapt", false);
+    read_adapt(unused);
   }
   f.ghia_cavity = sec.boolean("ghia_cavity", false);
   sec.finish();
@@ -142,13 +151,18 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   c.dilatation = sec.boolean("dilatation", false);
   static constexpr std::array<std::string_view, 2> kContinuity{"mixture", "fluid"};
   c.continuity = static_cast<FluidSolidSpec::Continuity>(sec.choice("continuity", kContinuity, 0));
+  const auto inlet = [](auto&& r) { return r.vec3("network_inlet", any_real("m"), std::nullopt); };
+  const auto extent = [](auto&& r) {
+    return r.vec3("network_inlet_extent", non_negative("m"), std::array<double, 3>{});
+  };
   if (sec.has("network_inlet")) {
-    c.network_inlet = sec.vec3("network_inlet", any_real("m"), std::nullopt);
-    c.network_inlet_extent = sec.vec3("network_inlet_extent", non_negative("m"), std::array<double, 3>{});
+    c.network_inlet = inlet(sec);
+    c.network_inlet_extent = extent(sec);
   } else {
-    sec.declare("network_inlet");
+    inlet(sec.unused());
     sec.forbid("network_inlet_extent",
                "it sizes the region around fluid_solid.network_inlet, which is absent");
+    extent(sec.unused());  // its rule, for the scenes with a network_inlet
   }
   static constexpr std::array<std::string_view, 2> kCouplings{"sequential", "concurrent"};
   c.coupling = static_cast<FluidSolidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));

@@ -24,15 +24,18 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f, bool pressure_from_flu
     f.error("lag_pressure", "a pressure above reference_pressure - bulk_modulus (where the density is zero)");
   MapReader well = f.section("injection", true);
   spec.point = well.vec3("point", any_real("m"), std::nullopt);
+  // The one not given is read through well.unused(), for its rule.
+  const auto rate = [](auto&& r) { return r.time_function("rate", "m^3/s", std::nullopt); };
+  const auto pressure = [](auto&& r) { return r.time_function("pressure", "Pa", std::nullopt); };
   const bool by_rate = well.has("rate"), by_pressure = well.has("pressure");
   if (by_rate)
-    spec.rate = well.time_function("rate", "m^3/s", std::nullopt);
+    spec.rate = rate(well);
   else
-    well.declare("rate");
+    rate(well.unused());
   if (by_pressure)
-    spec.pressure = well.time_function("pressure", "Pa", std::nullopt);
+    spec.pressure = pressure(well);
   else
-    well.declare("pressure");
+    pressure(well.unused());
   spec.pressure_from_fluid = pressure_from_fluid;
   if (pressure_from_fluid && (by_rate || by_pressure))
     well.error(by_rate ? "rate" : "pressure",
@@ -43,21 +46,23 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f, bool pressure_from_flu
     well.error(by_rate ? "pressure" : "rate",
                "one of rate (m^3/s) and pressure (Pa): the well is driven by one",
                by_rate ? "both are given" : "neither is given");
+  const auto surfaces = [](auto&& r) { return r.string_list("surfaces", {}); };
   if (well.has("surfaces")) {  // a borehole: the wall is the well (absent: the nearest crack vertex)
-    spec.well_surfaces = well.string_list("surfaces", {});
+    spec.well_surfaces = surfaces(well);
     if (well.ok("surfaces") && spec.well_surfaces.empty())
       well.error("surfaces", "a list of at least one surface name (the well's wall)", "an empty list");
   } else {
-    well.declare("surfaces");
+    surfaces(well.unused());
   }
   spec.well_volume = well.real("well_volume", non_negative("m^3"), 0.0);
   spec.well_compliance = well.real("well_compliance", non_negative("m^3/Pa"), 0.0);
   well.finish();
   spec.vent_pressure = f.optional_real("vent_pressure", any_real("Pa"));
+  const auto vent_surfaces = [](auto&& r) { return r.string_list("vent_surfaces", {}); };
   if (f.has("vent_surfaces"))  // absent: every surface of the mesh
-    spec.vent_surfaces = f.string_list("vent_surfaces", {});
+    spec.vent_surfaces = vent_surfaces(f);
   else
-    f.declare("vent_surfaces");
+    vent_surfaces(f.unused());
   spec.leak_off = f.real("leak_off", non_negative("m/s^0.5"), 0.0);
   spec.spurt = f.real("spurt", non_negative("m"), 0.0);
   f.finish();

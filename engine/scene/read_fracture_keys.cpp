@@ -35,6 +35,7 @@ FractureMaterialSpec read_fracture_material(MapReader& f, double young) {
   m.G_II = f.real("G_II", positive("J/m^2"), std::nullopt);
   // 10 E: the joints then soften the bulk by about 9 % and cut the stable step by about 3 (femdem.md 1d).
   m.penalty = f.real("penalty", positive("Pa"), 10.0 * young);
+  f.default_varies("penalty");
   // A joint opens by 2 f_t h / p at its peak (and slips 2 c h / p): below 1e-12 of its size h that is the
   // round-off of the node positions, and the law's scales (1 / opening) overflow. Such a joint breaks by
   // round-off, so the strengths must be at least 5e-13 of the penalty.
@@ -85,10 +86,11 @@ FractureSpec read_fracture_section(MapReader& f) {
   spec.integration_points = static_cast<int>(points);
   spec.y_compatible = f.choice("softening", kSoftening, 0) == 1;
   for (auto& c : f.section_list("initial_cracks", 0)) spec.initial_cracks.push_back(read_crack_plane(c));
+  const auto crack_pressure = [](auto&& r) { return r.time_function("crack_pressure", "Pa", std::nullopt); };
   if (f.has("crack_pressure"))
-    spec.crack_pressure = f.time_function("crack_pressure", "Pa", std::nullopt);
+    spec.crack_pressure = crack_pressure(f);
   else
-    f.declare("crack_pressure");
+    crack_pressure(f.unused());  // known with its rule; absent: no crack pressure
   f.finish();
   return spec;
 }

@@ -72,28 +72,34 @@ CylinderSpec read_cylinder(MapReader& c) {
 BlockSpec read_block(MapReader& b, size_t index) {
   BlockSpec block;
   block.name = b.string("name", "block" + std::to_string(index));
+  b.default_varies("name");
   block.origin = b.vec3("origin", any_real("m"), std::array<double, 3>{});
   block.size = b.vec3("size", positive("m"), std::nullopt);
-  // Exactly one of cells (a lattice) and element_size (an unstructured mesh).
-  if (b.has("element_size") && !b.has("cells")) {
-    block.element_size = b.real("element_size", positive("m"), std::nullopt);
-    b.declare("cells");
+  // Exactly one of cells (a lattice) and element_size (an unstructured mesh); the other is read through
+  // b.unused(), so that it is known with its rule.
+  const auto read_size = [](auto&& r) { return r.real("element_size", positive("m"), std::nullopt); };
+  const auto read_cells = [](auto&& r) {
+    return r.vec3("cells", RealRule{"", 1.0, 4096.0, false, false}, std::nullopt);
+  };
+  const bool has_size = b.has("element_size"), has_cells = b.has("cells");
+  if (has_size && !has_cells) {
+    block.element_size = read_size(b);
+    read_cells(b.unused());
   } else {
-    const std::array<double, 3> cells =
-        b.vec3("cells", RealRule{"", 1.0, 4096.0, false, false}, std::nullopt);
+    const std::array<double, 3> cells = read_cells(b);
     for (int a = 0; a < 3; ++a) block.cells[a] = static_cast<int>(cells[a]);
     if (b.ok("cells") &&
         (cells[0] != block.cells[0] || cells[1] != block.cells[1] || cells[2] != block.cells[2]))
       b.error("cells", "three whole numbers of cubes, each in [1, 4096]");
-    if (b.has("element_size")) b.error("element_size", "either cells or element_size, not both");
-    b.declare("element_size");
+    if (has_size) b.error("element_size", "either cells or element_size, not both");
+    read_size(b.unused());
   }
   b.finish();
   return block;
 }
 
-// Exactly one of box / cylinder / blocks. Keys of the shapes not used are declared without being read (a
-// silent reader reports nothing), so the docs test knows them whichever shape a scene uses.
+// Exactly one of box / cylinder / blocks. Keys of the shapes not used are read through g.unused(), which
+// reports nothing, so the docs test and the schema know them whichever shape a scene uses.
 void read_shape(MapReader& g, MeshGenerateSpec& spec) {
   const bool has_box = g.has("box"), has_cylinder = g.has("cylinder"), has_blocks = g.has("blocks");
   const int shapes = int(has_box) + int(has_cylinder) + int(has_blocks);
@@ -103,19 +109,17 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
         g.path(),
         "exactly one of " + g.key_path("box") + ", " + g.key_path("cylinder") + " or " + g.key_path("blocks"),
         shapes == 0 ? "none" : "more than one");
-  if (has_box && shapes == 1) {
-    spec.size = g.vec3("box", positive("m"), std::nullopt);
-  } else {
-    g.declare("box");
-  }
+  const auto box = [](auto&& r) { return r.vec3("box", positive("m"), std::nullopt); };
+  if (has_box && shapes == 1)
+    spec.size = box(g);
+  else
+    box(g.unused());
   if (has_cylinder && shapes == 1) {
     spec.shape = MeshGenerateSpec::Shape::cylinder;
     MapReader c = g.section("cylinder", false);
     spec.cylinder = read_cylinder(c);
   } else {
-    g.declare("cylinder");
-    MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("cylinder"), g.doc_key_path("cylinder"), g.where());
+    MapReader unused = g.unused().section("cylinder", false);
     read_cylinder(unused);
   }
   if (has_blocks && shapes == 1) {
@@ -123,10 +127,7 @@ void read_shape(MapReader& g, MeshGenerateSpec& spec) {
     auto blocks = g.section_list("blocks", 1);
     for (size_t k = 0; k < blocks.size(); ++k) spec.blocks.push_back(read_block(blocks[k], k));
   } else {
-    g.declare("blocks");
-    MapReader unused =
-        MapReader::silenced(g.context(), g.key_path("blocks"), g.doc_key_path("blocks"), g.where());
-    read_block(unused, 0);
+    for (MapReader& unused : g.unused().section_list("blocks", 1)) read_block(unused, 0);
   }
 }
 
@@ -179,6 +180,7 @@ BoreholeMeshSpec read_borehole(MapReader& r, const MeshGenerateSpec& box, bool b
   const double square =
       r.ok("radius") && r.ok("size") ? std::min(2.0, std::exp(spec.size / spec.radius)) : 1.0;
   spec.growth = r.real("growth", RealRule{"", 1.0, 2.0, false, false}, square);
+  r.default_varies("growth");
   if (box_ok && r.ok("axis_x") && r.ok("axis_y") && r.ok("radius") && r.ok("size") && r.ok("growth") &&
       spec.size <= spec.radius) {
     try {
@@ -206,12 +208,11 @@ std::optional<std::array<int, 3>> read_cells(MapReader& g) {
   return cells;
 }
 
-// A section this shape could have but the scene does not give: its key and its keys' documented paths
-// are known (the reader runs silenced), so that they count as declared.
+// A section this shape could have but the scene does not give: its key and its keys are known (read
+// through g.unused(), which reports nothing), so that they count as declared and have their rules.
 template <class Read>
 void declare_section(MapReader& g, const char* key, const Read& read) {
-  g.declare(key);
-  MapReader unused = MapReader::silenced(g.context(), g.key_path(key), g.doc_key_path(key), g.where());
+  MapReader unused = g.unused().section(key, false);
   read(unused);
 }
 
@@ -258,10 +259,12 @@ MeshGenerateSpec read_generate(MapReader& g) {
     g.finish();
     return spec;
   }
-  if (spec.shape == MeshGenerateSpec::Shape::cylinder)
+  if (spec.shape == MeshGenerateSpec::Shape::cylinder) {
     g.forbid("cells", "for a cylinder (a structured lattice is a box)");
-  else
-    g.declare("cells");
+  } else {
+    MapReader unused = g.unused();
+    read_cells(unused);
+  }
   spec.size_min = g.real("size_min", positive("m"), std::nullopt);
   spec.size_max = g.real("size_max", positive("m"), std::nullopt);
   if (g.ok("size_min") && g.ok("size_max") && spec.size_max < spec.size_min)
@@ -323,7 +326,7 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
       }
     }
   } else {
-    sec.declare("file");
+    sec.unused().string("file", std::nullopt);
   }
   mesh.scale = sec.real("scale", positive(""), 1.0);
   const auto max_elements = static_cast<uint64_t>(

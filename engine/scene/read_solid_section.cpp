@@ -23,7 +23,8 @@ MaterialSpec read_material(MapReader& m) {
     MapReader f = m.section("fracture", false);
     mat.fracture = read_fracture_material(f, mat.young);
   } else {
-    m.declare("fracture");
+    MapReader unused = m.unused().section("fracture", false);
+    read_fracture_material(unused, mat.young);
   }
   m.finish();
   return mat;
@@ -34,16 +35,20 @@ MaterialSpec read_material(MapReader& m) {
 SolidBoundarySpec read_boundary(MapReader& b) {
   using Kind = SolidBoundarySpec::Kind;
   SolidBoundarySpec bc;
+  // A surface or a node set's box; the other form is read through b.unused(), so that it is known with
+  // its rule.
+  const auto corner = [](auto&& r, const char* key) { return r.vec3(key, any_real("m"), std::nullopt); };
+  const auto surface = [](auto&& r) { return r.string("surface", std::nullopt); };
   const bool by_box = b.has("box_min") || b.has("box_max");
   if (by_box) {
-    bc.box_min = b.vec3("box_min", any_real("m"), std::nullopt);
-    bc.box_max = b.vec3("box_max", any_real("m"), std::nullopt);
+    bc.box_min = corner(b, "box_min");
+    bc.box_max = corner(b, "box_max");
     if (b.has("surface")) b.error("surface", "either surface or box_min/box_max (a node set), not both");
-    b.declare("surface");
+    surface(b.unused());
   } else {
-    bc.surface = b.string("surface", std::nullopt);
-    b.declare("box_min");
-    b.declare("box_max");
+    bc.surface = surface(b);
+    corner(b.unused(), "box_min");
+    corner(b.unused(), "box_max");
   }
   bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
   if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
@@ -127,22 +132,22 @@ SolidSpec read_solid_section(MapReader& sec) {
     MapReader f = sec.section("fracture", false);
     solid.fracture = read_fracture_section(f);
   } else {
-    sec.declare("fracture");
+    MapReader unused = sec.unused().section("fracture", false);
+    read_fracture_section(unused);
   }
   if (sec.has("contact")) {
     MapReader c = sec.section("contact", false);
     solid.contact = read_contact_section(c);
   } else {
-    sec.declare("contact");
-    MapReader unused =
-        MapReader::silenced(sec.context(), sec.key_path("contact"), sec.key_path("contact"), sec.where());
+    MapReader unused = sec.unused().section("contact", false);
     read_contact_section(unused);
   }
   if (sec.has("initial_stress")) {
     MapReader s = sec.section("initial_stress", false);
     solid.initial_stress = read_initial_stress_section(s);
   } else {
-    sec.declare("initial_stress");
+    MapReader unused = sec.unused().section("initial_stress", false);
+    read_initial_stress_section(unused);
   }
   for (size_t i = 0; i < boundaries.size(); ++i)
     if (solid.boundaries[i].kind == SolidBoundarySpec::Kind::in_situ && !solid.initial_stress &&

@@ -1,6 +1,7 @@
 // docs/scene-format.md must not drift from the reader: every key any valid scene under scenes/ makes
 // the reader look up is in a table of the doc, every key in the doc's tables is read by the doc's own
-// complete example, and that example is a valid scene.
+// complete examples (engine/scene/scene_format_doc.hpp finds them, as `rift schema` does), and those
+// examples are valid scenes.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "engine/scene/load_scene.hpp"
+#include "engine/scene/scene_format_doc.hpp"
 
 namespace rift {
 namespace {
@@ -26,31 +28,11 @@ std::string doc() {
   return read_text(kSource + "/docs/scene-format.md");
 }
 
-// The first cell of every table row that starts with a `key`: the documented key paths.
-std::set<std::string> documented_keys(const std::string& text) {
+// The documented key paths (the first cell of every key table's rows).
+std::set<std::string> documented_key_paths(const std::string& text) {
   std::set<std::string> keys;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("| `", 0) != 0) continue;
-    const size_t end = line.find('`', 3);
-    if (end != std::string::npos) keys.insert(line.substr(3, end - 3));
-  }
+  for (const auto& [key, row] : documented_keys(text)) keys.insert(key);
   return keys;
-}
-
-// The ```yaml blocks under each "## Complete example..." heading (one for the solid, one for the fluid, and
-// one for both, one for the fluid in the cracks: no one scene can use every key, e.g. a fluid-only scene's
-// fluid.mesh excludes mesh, and fracture_flow excludes solid.fracture.crack_pressure).
-std::vector<std::string> complete_examples(const std::string& text) {
-  std::vector<std::string> out;
-  for (size_t heading = text.find("## Complete example"); heading != std::string::npos;
-       heading = text.find("## Complete example", heading + 1)) {
-    const size_t open = text.find("```yaml\n", heading);
-    const size_t close = open == std::string::npos ? open : text.find("```", open + 8);
-    if (open == std::string::npos || close == std::string::npos) return {};
-    out.push_back(text.substr(open + 8, close - open - 8));
-  }
-  return out;
 }
 
 std::vector<std::filesystem::path> valid_scenes() {
@@ -64,7 +46,7 @@ std::vector<std::filesystem::path> valid_scenes() {
 }
 
 TEST(SceneDocs, DocumentsEveryKeyOfEveryValidScene) {
-  const std::set<std::string> documented = documented_keys(doc());
+  const std::set<std::string> documented = documented_key_paths(doc());
   ASSERT_GT(documented.size(), 40u);
   const auto scenes = valid_scenes();
   ASSERT_FALSE(scenes.empty());
@@ -88,7 +70,7 @@ TEST(SceneDocs, CompleteExampleIsValidAndUsesEveryDocumentedKey) {
     for (const auto& e : r.errors) ADD_FAILURE() << e.format();
     consumed.insert(r.consumed_keys.begin(), r.consumed_keys.end());
   }
-  const std::set<std::string> documented = documented_keys(text);
+  const std::set<std::string> documented = documented_key_paths(text);
   for (const auto& key : documented)
     EXPECT_TRUE(consumed.count(key)) << "docs/scene-format.md documents '" << key
                                      << "', which the complete examples never read";

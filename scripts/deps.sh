@@ -8,6 +8,7 @@ packages=(cmake ninja-build g++ ccache pkg-config
           libhypre-dev libopenmpi-dev
           python3-matplotlib python3-h5py python3-meshio   # matplotlib: rift plot and the sweep's plot;
                                                            # h5py, meshio: the readers tests, bench studies
+          python3-jsonschema python3-ruamel.yaml           # the scene schema's test (a YAML 1.2 reader)
           paraview python3-paraview xvfb xauth)            # rift render, ParaView's readers test (headless)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,7 +1,7 @@
 #pragma once
-// The subcommands behind `rift`: run, check, info, graph, sweep, plot, render. Each returns the process exit
-// code: 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options), 130 stopped by
-// a signal (a checkpoint was written; continue with --restart latest).
+// The subcommands behind `rift`: run, check, info, graph, sweep, plot, render, schema. Each returns the
+// process exit code: 0 success, 1 a run that stopped with a diagnosis, 2 bad input (scene, mesh, options),
+// 130 stopped by a signal (a checkpoint was written; continue with --restart latest).
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,5 +41,8 @@ int graph(const SceneArgs& args, int threads);
 int plot(const std::string& run_dir, const std::string& out_dir);
 // rift render RUN_DIR [options]: field pictures drawn by ParaView (engine/render/run_render.hpp).
 int render(const std::string& run_dir, const RenderOptions& options);
+// rift schema [--out FILE]: the scene format's JSON Schema (engine/scene/scene_schema.hpp) on standard
+// output, or written atomically to FILE.
+int schema(const std::string& out_file);
 
 }  // namespace rift::cli

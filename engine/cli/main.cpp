@@ -75,6 +75,10 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--size", render_options.size, "picture size WIDTHxHEIGHT (default 1280x960)");
   render_cmd->add_option("--range", render_options.range,
                          "MIN,MAX of the colour map in display units (default: 1st-99th percentile)");
+  std::string schema_out;
+  auto* schema_cmd = app.add_subcommand(
+      "schema", "Print the scene format's JSON Schema (for editors: docs/scene-format.md, Editor support)");
+  schema_cmd->add_option("--out,-o", schema_out, "write it to this file instead (replaced atomically)");
 
   try {
     app.parse(argc, argv);
@@ -91,6 +95,7 @@ int main(int argc, char** argv) {
     if (*sweep_cmd) return sweep(sweep_args);
     if (*plot_cmd) return plot(plot_dir, plot_out);
     if (*render_cmd) return render(render_dir, render_options);
+    if (*schema_cmd) return schema(schema_out);
   } catch (const std::bad_alloc&) {
     std::cerr << "rift: internal error: out of memory\n";
     return 1;

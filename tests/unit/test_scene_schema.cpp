@@ -1,4 +1,4 @@
-// The scene format's JSON Schema, made from the reader's own rules while it reads the
+// `rift schema`: the scene format's JSON Schema, made from the reader's own rules while it reads the
 // docs' complete examples (engine/scene/scene_schema.hpp). It must be a valid draft-07 schema, describe
 // every documented key, accept every valid scene and catch the usual mistakes, as a third-party
 // validator sees it: Python's jsonschema on the YAML read by ruamel.yaml. ruamel.yaml reads YAML 1.2,
@@ -254,6 +254,23 @@ TEST(SceneSchema, CatchesTheUsualMistakes) {
   EXPECT_EQ(v.status, 0) << v.output;
   for (const Mistake& m : mistakes)
     EXPECT_NE(v.output.find(m.message), std::string::npos) << m.message << "\n" << v.output;
+}
+
+// `rift schema` prints the schema; with --out it writes the same text to the file; --help lists it.
+TEST(Cli, SchemaPrintsOrWritesTheSceneSchema) {
+  test::TempDir dir;
+  EXPECT_EQ(run_program({RIFT_EXECUTABLE, "schema"}, {}, dir / "stdout.json"), 0);
+  EXPECT_EQ(test::slurp(dir / "stdout.json"), schema().json);
+  EXPECT_EQ(run_program({RIFT_EXECUTABLE, "schema", "--out", (dir / "scene.schema.json").string()}, {},
+                        dir / "out.log"),
+            0);
+  EXPECT_EQ(test::slurp(dir / "scene.schema.json"), schema().json);
+  EXPECT_NE(test::slurp(dir / "out.log").find("scene.schema.json"), std::string::npos);
+  EXPECT_NE(run_program({RIFT_EXECUTABLE, "schema", "--out", (dir / "no" / "such" / "x.json").string()}, {},
+                        dir / "bad.log"),
+            0);
+  EXPECT_EQ(run_program({RIFT_EXECUTABLE, "--help"}, {}, dir / "help.log"), 0);
+  EXPECT_NE(test::slurp(dir / "help.log").find("schema"), std::string::npos);
 }
 
 }  // namespace

@@ -56,7 +56,9 @@ RenderResult render_run(const fs::path& run_dir, const RenderOptions& o) {
     return r;
   }
   const fs::path script = out / "render_run.py";
-  write_text_atomic(script, kRenderRunScript);
+  std::string text;
+  for (const std::string_view part : generated::render_run_script_parts) text += part;
+  write_text_atomic(script, text);
   std::vector<std::string> command = pvpython_command(r.problem);
   std::vector<std::string> args = {script.string(), run_dir.string(), out.string(), "--normal", o.normal,
                                    "--times",       o.times,          "--size",     o.size};

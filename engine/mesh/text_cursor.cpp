@@ -28,6 +28,7 @@ bool TextCursor::more(size_t& keep_from) {
   if (kept == window_.size())
     fail("a token or quoted string of at most " + std::to_string(window_.size()) + " bytes", "a longer one");
   std::memmove(window_.data(), window_.data() + keep_from, kept);
+  window_start_ += keep_from;
   pos_ -= keep_from;
   keep_from = 0;
   end_ = kept;
@@ -165,6 +166,53 @@ bool TextCursor::skip_past_line_starting(std::string_view marker) {
     ++line_;
     scanned = 0;
     too_long = false;
+  }
+}
+
+bool TextCursor::bytes(char* out, size_t n) {
+  for (;;) {
+    const size_t take = std::min(n, end_ - pos_);
+    if (take > 0) {
+      const char* from = data() + pos_;
+      std::memcpy(out, from, take);
+      line_ += static_cast<int>(std::count(from, from + take, '\n'));
+      pos_ += take;
+      out += take;
+      n -= take;
+    }
+    if (n == 0) return true;
+    size_t keep = pos_;
+    if (!more(keep)) return false;
+  }
+}
+
+bool TextCursor::skip_bytes(uint64_t n) {
+  for (;;) {
+    const size_t take = static_cast<size_t>(std::min<uint64_t>(n, end_ - pos_));
+    const char* from = data() + pos_;
+    line_ += static_cast<int>(std::count(from, from + take, '\n'));
+    pos_ += take;
+    n -= take;
+    if (n == 0) return true;
+    size_t keep = pos_;
+    if (!more(keep)) return false;
+  }
+}
+
+bool TextCursor::line_end() {
+  for (;;) {
+    while (pos_ < end_) {
+      const char c = data()[pos_];
+      if (c == '\n') {
+        ++pos_;
+        ++line_;
+        return true;
+      }
+      if (c != ' ' && c != '\t' && c != '\r') return false;
+      ++pos_;
+    }
+    size_t keep = pos_;
+    if (!more(keep)) return false;
   }
 }
 

@@ -3,7 +3,8 @@
 // "path:line: expected ..., found ...". The file is streamed through a window of fixed size, so that
 // reading a mesh of gigabytes needs the window, not the file, in memory. Tokens are whitespace-separated
 // views into the window (no allocation), valid until the next call; numbers are parsed with
-// std::from_chars, which is exact and fast.
+// std::from_chars, which is exact and fast. A file may mix text and raw bytes (binary MSH files put binary
+// data between text lines): raw reads copy or skip any number of bytes across the window's boundaries.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -34,6 +35,17 @@ class TextCursor {
   // Skips past the next occurrence of `marker` at the start of a line; false when there is none.
   bool skip_past_line_starting(std::string_view marker);
 
+  // Raw bytes: exactly `n` into `out`; false when the file ends first (what there was is consumed).
+  // Newline bytes among them count as lines, so that the lines after binary data are numbered as an
+  // editor numbers them.
+  bool bytes(char* out, size_t n);
+  // Skips `n` raw bytes (hashed like the rest); false when the file ends first.
+  bool skip_bytes(uint64_t n);
+  // The end of a text line before raw bytes start: spaces, tabs and carriage returns, then one newline,
+  // consumed. False when another byte (or the end of the file) comes first.
+  bool line_end();
+  uint64_t offset() const { return window_start_ + pos_; }  // byte offset of the next unread byte
+
   int line() const { return token_line_; }  // line of the last token read (1-based)
   const std::string& path() const { return path_; }
   // FNV-1a 64 of every byte read so far (of the whole file once the last token has been read).
@@ -57,6 +69,7 @@ class TextCursor {
   std::vector<char> window_;
   bool at_eof_ = false;
   uint64_t hash_ = 0;
+  uint64_t window_start_ = 0;  // byte offset in the file of window_[0]
   std::string path_;
   size_t pos_ = 0, end_ = 0;  // next byte and end of the text at hand
   int line_ = 1;              // line at pos_

@@ -1,4 +1,6 @@
-// Gmsh MSH 4.1 reader and writer, on small files the test writes itself.
+// Gmsh MSH 4.1 ASCII reader and writer, on small files the test writes itself (MSH 2.2:
+// test_msh22_reader.cpp; binary files: test_msh_binary.cpp; all four formats alike and meshio's
+// files: test_msh_formats.cpp).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -213,6 +215,19 @@ TEST(MshReader, RejectsCountMismatchAndMissingEnd) {
   expect_error("noend.msh", replace(kCube, "$EndNodes", "$EndNode"), "$EndNode\n", "$EndNodes");
   expect_error("noend_elements.msh", replace(kCube, "$EndElements", "$Elements"), "$Elements\n$NodeData",
                "$EndElements");
+}
+
+// A second $Nodes would map its tags over the first's; Gmsh writes one of each.
+TEST(MshReader, RejectsASecondNodesOrElementsSection) {
+  for (const char* name : {"$Nodes", "$Elements"}) {
+    const std::string section = std::string(name) + "\n";
+    const std::string end = "$End" + std::string(name + 1) + "\n";
+    const size_t from = kCube.find(section), to = kCube.find(end) + end.size();
+    const std::string path = write_file("second.msh", kCube + kCube.substr(from, to - from));
+    EXPECT_EQ(test_error([&] { read_msh(path); }),
+              path + ":" + std::to_string(line_of(kCube, "$EndNodeData") + 1) + ": expected one " + name +
+                  " section, found a second one");
+  }
 }
 
 TEST(MshReader, RejectsNonNumericTokenAndDegenerateTet) {

@@ -1,7 +1,9 @@
 // Seeded fuzzing of the readers that take files from users: the scene reader, the MSH reader and the
 // checkpoint verifier. Each starts from real inputs (the scenes in scenes/, a generated mesh, a written
 // checkpoint), applies 1 - 4 random mutations (a byte replaced by a character YAML or MSH gives meaning,
-// a span deleted, a line repeated, a hostile token inserted, the end cut off) and reads the result. The
+// a span deleted, a line repeated, a hostile token inserted, the end cut off; in a binary MSH file also a
+// 4- or 8-byte value overwritten with an edge value) and reads the result. The MSH reader is fuzzed on all
+// four formats it takes (4.1 and 2.2, ASCII and binary). The
 // promise checked: a reader returns, or throws rift::Error (which the CLI turns into exit 2 with the
 // message); no other exception, no crash, no hang. The seed is fixed, so a failure names an input that
 // reproduces: the test prints it. RIFT_FUZZ_CASES=<n> runs n cases per input file instead of the CI's
@@ -29,6 +31,7 @@
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
+#include "tests/unit/test_msh_support.hpp"
 
 namespace rift {
 namespace {
@@ -42,13 +45,14 @@ int cases(int ci_default) {
 
 class Mutator {
  public:
-  explicit Mutator(uint64_t seed) : rng_(seed) {}
+  // `binary`: the input holds binary data, which a further mutation aims at (a value overwritten).
+  explicit Mutator(uint64_t seed, bool binary = false) : rng_(seed), binary_(binary) {}
 
   std::string operator()(std::string text) {
     const int n = pick(1, 4);
     for (int i = 0; i < n && !text.empty(); ++i) {
       const size_t at = static_cast<size_t>(pick(0, static_cast<int64_t>(text.size()) - 1));
-      switch (pick(0, 4)) {
+      switch (pick(0, binary_ ? 5 : 4)) {
         case 0:
           text[at] = kChars[pick(0, sizeof kChars - 2)];
           break;
@@ -66,6 +70,12 @@ class Mutator {
         case 3:
           text.insert(at, kTokens[pick(0, std::size(kTokens) - 1)]);
           break;
+        case 5: {  // a binary int or size_t overwritten with an edge value (little-endian)
+          const uint64_t value = kValues[pick(0, std::size(kValues) - 1)];
+          const size_t bytes = std::min<size_t>(pick(0, 1) ? 8 : 4, text.size() - at);
+          for (size_t k = 0; k < bytes; ++k) text[at + k] = static_cast<char>(value >> (8 * k));
+          break;
+        }
         default:
           text.resize(at);
       }
@@ -83,7 +93,10 @@ class Mutator {
       "{}",    "&a ",    "*a",   "<<: *a",     "!!binary ",   "\n- ",
       ": ",    "$End",   "4.1 ", "2147483648", "-2147483649", "\xff\xfe",
       "\0"};
+  static constexpr uint64_t kValues[] = {
+      0, 1, 4, 0x7fffffff, 0x80000000, 0xffffffff, uint64_t{1} << 40, ~uint64_t{0} >> 1, ~uint64_t{0}};
   std::mt19937_64 rng_;
+  bool binary_;
 };
 
 // Reads `what` with `read`; a failure message carries the case's number and the input's start.
@@ -137,13 +150,9 @@ TEST(Fuzz, SceneReaderReturnsOrErrorsOnMutatedScenes) {
   std::printf("%zu mutated scenes read: %zu accepted, the rest refused with diagnostics\n", total, accepted);
 }
 
-TEST(Fuzz, MshReaderReturnsOrErrorsOnMutatedMeshes) {
-  test::TempDir dir;
-  TetMesh mesh = generate_lattice_box({2, 2, 2}, {1, 1, 1});
-  write_msh(mesh, (dir / "base.msh").string());
-  const std::string original = slurp(dir / "base.msh");
-  Mutator mutate(2026);
-  const int n = cases(600);
+// Reads `n` mutations of `original` (one MSH format) through the default window and a small one.
+void fuzz_msh(const test::TempDir& dir, const std::string& name, const std::string& original, Mutator mutate,
+              int n) {
   size_t accepted = 0;
   for (int k = 0; k < n; ++k) {
     const std::string text = mutate(original);
@@ -154,7 +163,7 @@ TEST(Fuzz, MshReaderReturnsOrErrorsOnMutatedMeshes) {
     std::string outcome[2];
     const size_t windows[2] = {msh_window_bytes, 24 + static_cast<size_t>(k % 97)};
     for (int w = 0; w < 2; ++w)
-      expect_reads_or_errors("msh case " + std::to_string(k), text, [&] {
+      expect_reads_or_errors(name + " case " + std::to_string(k), text, [&] {
         try {
           const TetMesh m =
               read_msh(file.string(), 1.0, nullptr, {1u << 20, "mesh.max_file_bytes"}, windows[w]);
@@ -167,10 +176,33 @@ TEST(Fuzz, MshReaderReturnsOrErrorsOnMutatedMeshes) {
         }
       });
     if (outcome[1].find("expected a token or quoted string of at most") == std::string::npos) {
-      EXPECT_EQ(outcome[1], outcome[0]) << "msh case " << k << " through a window of " << windows[1];
+      EXPECT_EQ(outcome[1], outcome[0]) << name << " case " << k << " through a window of " << windows[1];
     }
   }
-  std::printf("%d mutated meshes read: %zu accepted, the rest refused\n", n, accepted);
+  std::printf("%d mutated %s meshes read: %zu accepted, the rest refused\n", n, name.c_str(), accepted);
+}
+
+// The same lattice box in the four formats the MSH reader takes: Rift's own 4.1 ASCII file and the test
+// writer's 4.1 binary and 2.2 ASCII and binary (test_msh_support.hpp).
+TEST(Fuzz, MshReaderReturnsOrErrorsOnMutatedMeshes) {
+  test::TempDir dir;
+  TetMesh mesh = generate_lattice_box({2, 2, 2}, {1, 1, 1});
+  write_msh(mesh, (dir / "base.msh").string());
+  const test::MshSpec spec = test::spec_of(mesh);
+  const struct {
+    const char* name;
+    std::string bytes;
+    bool binary;
+    uint64_t seed;
+    int cases;
+  } inputs[] = {{"4.1 ASCII", slurp(dir / "base.msh"), false, 2026, 600},
+                {"4.1 binary", test::write_msh41(spec, true), true, 2027, 400},
+                {"2.2 ASCII", test::write_msh22(spec, false), false, 2028, 400},
+                {"2.2 binary", test::write_msh22(spec, true), true, 2029, 400}};
+  for (const auto& input : inputs) {
+    ASSERT_EQ(read_msh(test::write_bytes(dir, "unmutated.msh", input.bytes)).tets, mesh.tets) << input.name;
+    fuzz_msh(dir, input.name, input.bytes, Mutator(input.seed, input.binary), cases(input.cases));
+  }
 }
 
 // A checkpoint of a small store, damaged: 1 - 4 bytes changed anywhere (the seal, HDF5's own structure,

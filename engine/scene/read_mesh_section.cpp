@@ -291,8 +291,7 @@ std::string resolve_mesh_file(MapReader& sec, const std::string& file, const std
   if (!ec) path = absolute;
   path = path.lexically_normal();
   if (!fs::is_regular_file(path, ec))
-    sec.error("file",
-              "the path of an existing Gmsh MSH 4.1 file (relative paths start at the scene's folder)",
+    sec.error("file", "the path of an existing Gmsh MSH file (relative paths start at the scene's folder)",
               "no file at " + path.string());
   return path.string();
 }
@@ -320,8 +319,7 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
         const InputFileLimit limit{mesh.max_file_bytes, sec.key_path("max_file_bytes")};
         mesh.file_fnv1a64 = hex16(hash_input_file(*mesh.file, limit, "mesh file"));
       } catch (const Error& e) {
-        sec.error("file",
-                  "a readable Gmsh MSH 4.1 file of at most " + sec.key_path("max_file_bytes") + " bytes",
+        sec.error("file", "a readable Gmsh MSH file of at most " + sec.key_path("max_file_bytes") + " bytes",
                   e.what());
       }
     }

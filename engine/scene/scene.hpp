@@ -89,7 +89,7 @@ struct MeshGenerateSpec {
 };
 
 struct MeshSpec {
-  std::optional<std::string> file;           // Gmsh MSH 4.1 ASCII, path resolved against the scene's folder
+  std::optional<std::string> file;           // Gmsh MSH 4.1 or 2.2, path resolved against the scene's folder
   std::optional<MeshGenerateSpec> generate;  // exactly one of file / generate
   double scale = 1.0;                        // multiplies file coordinates (1e-3 for a mesh drawn in mm)
   uint64_t max_file_bytes = uint64_t{2} << 30;  // a larger file is refused before it is read

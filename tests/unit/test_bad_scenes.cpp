@@ -42,7 +42,7 @@ const std::vector<BadScene> kBadScenes = {
      {{12, 3, "solid.mass_damping", "a damping >= 0 1/s at every time", "", ""}}},
     {"poisson_half.yaml", {{16, 16, "solid.materials[0].poisson", "in [0, 0.5)", "'0.5'", ""}}},
     {"missing_mesh_file.yaml",
-     {{7, 9, "mesh.file", "an existing Gmsh MSH 4.1 file", "'does_not_exist.msh'",
+     {{7, 9, "mesh.file", "an existing Gmsh MSH file", "'does_not_exist.msh'",
        "scenes/bad/does_not_exist.msh"}}},
     // The position is where yaml-cpp notices the list was never closed: the next line.
     {"malformed_yaml.yaml", {{13, 12, "", "well-formed YAML", "end of sequence flow not found", ""}}},

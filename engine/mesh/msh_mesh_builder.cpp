@@ -152,11 +152,17 @@ void MshMeshBuilder::refuse_coincident_nodes() const {
   if (order.empty()) return;
   const Vec3 extent = sub(hi, lo);
   const double tol = 1e-12 * std::sqrt(dot(extent, extent));
+  // Sorted along a direction that no mesh's axes or lattice planes follow (sorted by x, every node of a
+  // structured mesh would be compared with its whole plane of equal x): a partner within tol lies among the
+  // following nodes whose projection is within tol (2 tol: the projections' round-off is far below tol).
+  const double r2 = std::sqrt(2.0) - 1, r3 = std::sqrt(3.0) - 1, norm = std::sqrt(1 + r2 * r2 + r3 * r3);
+  const Vec3 direction = {1 / norm, r2 / norm, r3 / norm};
+  std::vector<double> along(nodes_.size());
+  for (const uint32_t n : order) along[n] = dot(direction, sub(nodes_[n], lo));
   std::sort(order.begin(), order.end(),
-            [&](uint32_t a, uint32_t b) { return nodes_[a] != nodes_[b] ? nodes_[a] < nodes_[b] : a < b; });
-  // Sorted by x first: a partner within tol lies among the following nodes whose x is within tol.
+            [&](uint32_t a, uint32_t b) { return along[a] != along[b] ? along[a] < along[b] : a < b; });
   for (size_t i = 0; i < order.size(); ++i)
-    for (size_t j = i + 1; j < order.size() && nodes_[order[j]][0] - nodes_[order[i]][0] <= tol; ++j) {
+    for (size_t j = i + 1; j < order.size() && along[order[j]] - along[order[i]] <= 2 * tol; ++j) {
       const Vec3 d = sub(nodes_[order[j]], nodes_[order[i]]);
       if (dot(d, d) > tol * tol) continue;
       const uint32_t a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);

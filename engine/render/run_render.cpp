@@ -35,7 +35,9 @@ std::vector<std::string> pvpython_command(std::string& problem) {
 bool display_was_refused(const fs::path& log) {
   std::ifstream in(log);
   for (std::string line; std::getline(in, line);)
-    if (line.find("bad X server connection") != std::string::npos) return true;
+    for (const char* sign :
+         {"bad X server connection", "Xvfb failed to start", "cannot open display", "Can't open display"})
+      if (line.find(sign) != std::string::npos) return true;
   return false;
 }
 
@@ -72,8 +74,9 @@ RenderResult render_run(const fs::path& run_dir, const RenderOptions& o) {
   }
   command.insert(command.end(), args.begin(), args.end());
   const fs::path log = out / "render_run.log";
-  // xvfb-run -a takes the first display number without a lock file; a server that another run is just
-  // starting or stopping there refuses the connection. That, and only that, is tried again.
+  // xvfb-run -a takes the first display number without a lock file: two runs starting together may both
+  // take it (one server fails to start), or find a server that another run is stopping (the connection
+  // is refused). Those, and only those, are tried again.
   int status = 0;
   for (int attempt = 0; attempt < 3; ++attempt) {
     fs::remove(log, ec);

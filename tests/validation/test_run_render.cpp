@@ -75,7 +75,7 @@ TEST(RunRender, TheCutShowsTheKnownCrackAsALineAcrossTheColumn) {
                       "640x480", "--out", (dir / "pictures").string()},
                      log),
             0)
-      << test::slurp(log);
+      << test::slurp(log) << test::slurp(dir / "pictures" / "render_run.log");
   const fs::path cut = dir / "pictures" / "cut_stress_zz_0002.png";
   const fs::path cracks = dir / "pictures" / "cracks_0002.png";
   ASSERT_TRUE(fs::is_regular_file(cut)) << test::slurp(log);

@@ -27,46 +27,16 @@
 #include <vector>
 
 #include "engine/mesh/sphere_shell_generator.hpp"
-#include "kernels/contact_broad_phase.hpp"
 #include "kernels/fluid_element.hpp"
-#include "kernels/volume_fraction.hpp"
 #include "systems/fluid/fluid_solver.hpp"
 #include "tests/validation/fluid_support.hpp"
+#include "tests/validation/immersed_support.hpp"
 
 namespace rift {
 namespace {
 
 using fluid::FluidSettings;
 using fluid::FluidSolver;
-
-std::vector<double> flat_nodes(const TetMesh& m) {
-  std::vector<double> x;
-  for (const auto& p : m.nodes) x.insert(x.end(), p.begin(), p.end());
-  return x;
-}
-std::vector<int32_t> flat_tets(const TetMesh& m) {
-  std::vector<int32_t> t;
-  for (const auto& k : m.tets) t.insert(t.end(), k.begin(), k.end());
-  return t;
-}
-
-// alpha_K of the solid mesh on the fluid mesh.
-std::vector<double> solid_fraction(const TetMesh& fluid, const TetMesh& solid) {
-  const std::vector<double> fx = flat_nodes(fluid), sx = flat_nodes(solid);
-  const std::vector<int32_t> ft = flat_tets(fluid), st = flat_tets(solid);
-  const size_t nf = fluid.tets.size(), ns = solid.tets.size();
-  std::vector<int32_t> fid(nf), sid(ns);
-  for (size_t i = 0; i < nf; ++i) fid[i] = static_cast<int32_t>(i);
-  for (size_t i = 0; i < ns; ++i) sid[i] = static_cast<int32_t>(i);
-  std::vector<double> flo(3 * nf), fhi(3 * nf), slo(3 * ns), shi(3 * ns);
-  kernels::tet_bounding_boxes(fx, ft, fid, flo, fhi, 0, nf);
-  kernels::tet_bounding_boxes(sx, st, sid, slo, shi, 0, ns);
-  kernels::CouplingBroadPhaseWorkspace ws;
-  kernels::coupling_broad_phase({flo, fhi, slo, shi, 0.0}, ws);
-  std::vector<double> solid_volume(nf), alpha(nf);
-  kernels::volume_fraction({fx, ft, sx, st, ws.pairs, solid_volume, alpha}, 0, nf);
-  return alpha;
-}
 
 struct DragResult {
   double error = 0.0;  // F / F_exact - 1
@@ -91,26 +61,14 @@ DragResult immersed_sphere_drag(double h) {
   ss.size_max = h;
   ss.grading = 0.0;
   const TetMesh solid_mesh = generate_sphere_shell_mesh(ss);
-  const std::vector<double> alpha = solid_fraction(fluid_mesh, solid_mesh);
+  const std::vector<double> alpha = fluid_test::solid_fraction(fluid_mesh, solid_mesh);
 
   const FluidSettings s = fluid_test::stokes_container_settings(kMu);
   const auto bcs = fluid_test::stokes_container_boundaries(kU);
   FluidSolver solver(fluid_mesh, s, bcs);
-  const double sigma0 = 1e6 * kMu / (kR * kR);
-  auto sigma = solver.sigma();
-  for (size_t k = 0; k < alpha.size(); ++k) sigma[k] = sigma0 * alpha[k];
-  solver.absorption_changed();
+  fluid_test::hold_solid(solver, alpha, 1e6 * kMu / (kR * kR));
   const fluid::FluidStepReport rep = solver.step();
-
-  const auto tets = solver.tets();
-  const auto vol = solver.volumes();
-  const auto u = solver.velocity();
-  double absorbed = 0.0;
-  for (size_t k = 0; k < alpha.size(); ++k) {
-    double ux = 0.0;
-    for (int a = 0; a < 4; ++a) ux += u[3 * static_cast<size_t>(tets[4 * k + a])];
-    absorbed += sigma[k] * 0.25 * vol[k] * ux;
-  }
+  const double absorbed = fluid_test::absorbed_force(solver)[0];
   const double held = fluid_test::wall_force_x(fluid_mesh, solver, kMu, "sphere");  // the core's wall
   const double force = absorbed + held;
   double solid_volume = 0.0;

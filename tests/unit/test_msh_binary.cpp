@@ -11,47 +11,9 @@
 #include <string>
 
 #include "engine/mesh/msh_reader.hpp"
+#include "tests/unit/test_allocation_counter.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_msh_support.hpp"
-
-// The largest single heap allocation since the last reset: a count read from a file must not size one.
-namespace {
-std::atomic<size_t> largest_allocation{0};
-void* tracked_malloc(std::size_t n) {
-  size_t seen = largest_allocation.load(std::memory_order_relaxed);
-  while (n > seen && !largest_allocation.compare_exchange_weak(seen, n, std::memory_order_relaxed)) {
-  }
-  return std::malloc(n ? n : 1);
-}
-}  // namespace
-
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t n) {
-  if (void* p = tracked_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) {
-  if (void* p = tracked_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  return tracked_malloc(n);
-}
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  return tracked_malloc(n);
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace rift {
 namespace {

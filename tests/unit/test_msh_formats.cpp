@@ -25,16 +25,6 @@ using test::msh_formats;
 using test::TempDir;
 using test::write_bytes;
 
-void expect_same_mesh(const TetMesh& a, const TetMesh& b) {
-  EXPECT_EQ(a.nodes, b.nodes);
-  EXPECT_EQ(a.tets, b.tets);
-  EXPECT_EQ(a.tet_region, b.tet_region);
-  EXPECT_EQ(a.region_names, b.region_names);
-  EXPECT_EQ(a.triangles, b.triangles);
-  EXPECT_EQ(a.triangle_surface, b.triangle_surface);
-  EXPECT_EQ(a.surface_names, b.surface_names);
-}
-
 TEST(MshFormats, OneMeshInFourFormatsReadsAsTheSameMesh) {
   TempDir dir;
   for (const auto& format : msh_formats()) {
@@ -103,7 +93,7 @@ TEST(MshFormats, EveryWindowGivesTheSameMeshHashAndErrors) {
       MshReadStats stats;
       const TetMesh mesh =
           read_msh(path, 1.0, &stats, {msh_default_max_bytes, "mesh.max_file_bytes"}, window);
-      expect_same_mesh(mesh, whole);
+      test::expect_same_mesh(mesh, whole);
       EXPECT_EQ(stats.content_fnv1a64, whole_stats.content_fnv1a64) << window;
       EXPECT_EQ(stats.skipped_elements, whole_stats.skipped_elements) << window;
       EXPECT_EQ(stats.flipped_tets, whole_stats.flipped_tets) << window;

@@ -12,6 +12,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/fnv1a.hpp"
 #include "engine/mesh/msh_reader.hpp"
+#include "tests/unit/test_msh_support.hpp"
 
 namespace rift {
 namespace {
@@ -407,14 +408,7 @@ TEST(MshWriter, RoundTripGivesTheSameMesh) {
   mesh.nodes[1][0] = 0.1 + 0.2;  // not exactly representable in few digits: must still round-trip
   const std::string path = (temp_folder() / "written.msh").string();
   write_msh(mesh, path);
-  const TetMesh back = read_msh(path);
-  EXPECT_EQ(back.nodes, mesh.nodes);
-  EXPECT_EQ(back.tets, mesh.tets);
-  EXPECT_EQ(back.tet_region, mesh.tet_region);
-  EXPECT_EQ(back.region_names, mesh.region_names);
-  EXPECT_EQ(back.triangles, mesh.triangles);
-  EXPECT_EQ(back.triangle_surface, mesh.triangle_surface);
-  EXPECT_EQ(back.surface_names, mesh.surface_names);
+  test::expect_same_mesh(read_msh(path), mesh);
 }
 
 TEST(MshWriter, RoundTripKeepsInterleavedGroupsInOrder) {

@@ -50,6 +50,17 @@ struct MshSpec {
 // 106 and 107 negative. Volume entity 1 is in physicals 7 "rock" and 8, entity 2 in 9, entity 3 in none;
 // surface entity 1 in physicals 3 "base" and 5, entity 2 in "base", entity 3 in none. A point (type 15), a
 // line (type 1) and a 10-node tet (type 11) are skipped.
+// Every part of two meshes is equal.
+inline void expect_same_mesh(const TetMesh& a, const TetMesh& b) {
+  EXPECT_EQ(a.nodes, b.nodes);
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.tet_region, b.tet_region);
+  EXPECT_EQ(a.region_names, b.region_names);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.triangle_surface, b.triangle_surface);
+  EXPECT_EQ(a.surface_names, b.surface_names);
+}
+
 inline MshSpec cube_spec() {
   MshSpec s;
   s.names = {{3, 7, "rock"}, {2, 3, "base"}, {1, 11, "an edge"}};

@@ -295,8 +295,10 @@ def cut_view(field, values, trace, value_range, size, plane):
     shown = pv.Show(values, view)
     pv.ColorBy(shown, (field.association, "shown"))
     lut = pv.GetColorTransferFunction("shown")
-    lut.ApplyPreset("Cool to Warm", True)
-    lut.RescaleTransferFunction(*value_range)
+    # A diverging map where the range has both signs (its middle is zero), a sequential one otherwise.
+    low, high = value_range
+    lut.ApplyPreset("Cool to Warm" if low < 0.0 < high else "Viridis (matplotlib)", True)
+    lut.RescaleTransferFunction(low, high)
     lut.AutomaticRescaleRangeMode = "Never"
     colour_bar(lut, view, field.title)
     shown.SetScalarBarVisibility(view, True)

@@ -2,12 +2,13 @@
 xvfb-run -a pvpython render_run.py RUN_DIR OUT_DIR [options]).
 
 For each chosen output time it writes into OUT_DIR:
-  cut_<field>_<step>.png     a plane cut of the grid that holds the field (the solid's tets, else the
+  cut_<field>_<n>.png        a plane cut of the grid that holds the field (the solid's tets, else the
                              fluid's), coloured by the field in display units, with the crack trace (the
                              broken joints the plane cuts) in black;
-  cracks_<step>.png          the broken joints, coloured by the time each broke (fractures.csv), inside
+  cracks_<n>.png             the broken joints, coloured by the time each broke (fractures.csv), inside
                              the solid's outline; written when the run has a fracture zone.
-Every picture of one field shares one colour range (the range over the chosen times), so a series reads
+<n> is the output's number in the run's series (0000 the first). Every picture of one field shares one
+colour range (the 1st to 99th percentile over the chosen times, or --range), so a series reads
 as a film. The files are written to a temporary name and renamed: a reader never sees half a PNG.
 Prints each file written on its own line; exits 2 with a message on a bad argument or a missing grid.
 
@@ -16,7 +17,6 @@ Reads the XDMF indexes with ParaView's "XDMF Reader", the reader the README name
 """
 import argparse
 import csv
-import math
 import os
 import sys
 
@@ -378,12 +378,12 @@ def main():
         crack_view, crack_caption = cracks_view(a.run, readers, broken, times_of_breaks, size, plane)
 
     for t in times:
-        step = "%04d" % (available.index(t) if t in available else 0)
+        number = "%04d" % (available.index(t) if t in available else 0)
         view.ViewTime = t
         caption.Text = "t = %s   cut %s = %s   %s grid" % (
             readable(t, "s"), a.normal, readable(plane.centre[plane.axis], "m"), field.grid)
         view.ResetCamera(False)
-        save(view, os.path.join(a.out, "cut_%s_%s.png" % (field.tag, step)), size)
+        save(view, os.path.join(a.out, "cut_%s_%s.png" % (field.tag, number)), size)
         if broken is not None:
             crack_view.ViewTime = t
             broken.UpdatePipeline(t)
@@ -391,7 +391,7 @@ def main():
             crack_caption.Text = "t = %s   %s" % (
                 readable(t, "s"), "%d joints broken" % count if count else "no crack yet")
             crack_view.ResetCamera(False)
-            save(crack_view, os.path.join(a.out, "cracks_%s.png" % step), size)
+            save(crack_view, os.path.join(a.out, "cracks_%s.png" % number), size)
 
 
 if __name__ == "__main__":

@@ -108,7 +108,7 @@ TEST(OutputReaders, MeshioReadsOneGridsSeries) {
 
 // ParaView's three XDMF readers (scripts/check_paraview_readers.py), where ParaView is installed.
 TEST(OutputReaders, ParaViewsThreeXdmfReadersShowTheSameStress) {
-  if (std::system("command -v pvpython >/dev/null 2>&1 && command -v xvfb-run >/dev/null 2>&1") != 0)
+  if (find_program("pvpython").empty() || find_program("xvfb-run").empty())
     GTEST_SKIP() << "SKIP: pvpython or xvfb-run not installed (Debian: apt-get install paraview "
                     "python3-paraview xvfb); ParaView's readers not checked";
   test::TempDir dir;

@@ -127,6 +127,7 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
       double o, sv[3], s;
       point_jump(g, rule.N[q], o, sv, s);
       const JointPointResponse r = joint_point_response(m, k, a.softening, Z, o, s, history[q]);
+      status.damage_onsets += history[q] == 0.0 && r.d_max > 0.0;
       history[q] = r.d_max;
       failed += r.d_max >= 1.0;
       short_softening |= r.short_shear;

@@ -86,6 +86,7 @@ struct JointStatus {
   size_t broke = 0;            // joints that broke in this call
   size_t breaks_dropped = 0;   // of which did not fit into args.breaks
   size_t degenerate = 0;       // mid-surface area zero or not finite: all outputs 0, history untouched
+  size_t damage_onsets = 0;    // integration points whose damage history left 0 in this call
   size_t short_softening = 0;  // joints whose energy_exact softening length was <= 0 and was floored
                                // (joint_law.hpp): the normal one, the unconfined shear one, or the shear
                                // one at a compressed point's confinement where the law needed it
@@ -93,6 +94,7 @@ struct JointStatus {
     broke += o.broke;
     breaks_dropped += o.breaks_dropped;
     degenerate += o.degenerate;
+    damage_onsets += o.damage_onsets;
     short_softening += o.short_softening;
     return *this;
   }

@@ -201,6 +201,7 @@ PointV point_law(const MaterialV& m, const ScalesV& k, Softening rule, double Z,
 struct Sums {  // per-joint accumulators over the points
   V4 F[3][3], mean_o, mean_s, energy, damage, normal, shear, failed, short_any;
   V4 slider;  // some point is damaged and its material has residual friction: the scalar path's job
+  size_t damage_onsets;  // points whose history left 0
 };
 
 void integrate(const JointArgs& a, const size_t joint[4], int count, const GeometryV& g, const MaterialV& m,
@@ -215,6 +216,7 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
   t.mean_o = t.mean_s = t.energy = t.damage = t.normal = t.shear = t.failed = zero;
   t.short_any = k.short_normal;
   t.slider = zero;
+  t.damage_onsets = 0;
   const V4 has_friction = greater(m.mu, zero);
   for (size_t q = 0; q < P; ++q) {
     const double N0 = rule.N[q][0], N1 = rule.N[q][1], N2 = rule.N[q][2], w = rule.w[q];
@@ -227,7 +229,10 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
     const PointV r = point_law(m, k, a.softening, Z, o, s, d_max);
     alignas(32) double updated[4];
     _mm256_store_pd(updated, r.d_max);
-    for (int l = 0; l < count; ++l) history[l][q] = updated[l];
+    for (int l = 0; l < count; ++l) {
+      t.damage_onsets += history[l][q] == 0.0 && updated[l] > 0.0;
+      history[l][q] = updated[l];
+    }
     t.failed += simd::keep(_mm256_cmp_pd(r.d_max, set1(1.0), _CMP_GE_OQ), set1(1.0));
     t.short_any = either(t.short_any, r.short_shear);
     t.slider = either(t.slider, both(has_friction, greater(r.d_max, zero)));
@@ -250,6 +255,7 @@ void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointS
   const size_t j0 = joint[0];
   const int real = (1 << count) - 1;
   status.short_softening += static_cast<size_t>(__builtin_popcount(lanes(t.short_any) & real));
+  status.damage_onsets += t.damage_onsets;
   if (!a.opening.empty()) simd::store1(t.mean_o, a.opening.data() + j0, count);
   if (!a.slip.empty()) simd::store1(t.mean_s, a.slip.data() + j0, count);
   const V4 breaks = _mm256_cmp_pd(t.failed, set1(a.rule->fail_count), _CMP_GE_OQ);

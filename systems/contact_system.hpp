@@ -5,9 +5,10 @@
 // when to detect again, and where the forces go.
 //
 // Who takes part (the candidates): the two tets of every broken joint, from the step it broke (Y's rule:
-// no step passes between cohesion and contact), and, in a mesh of several bodies, every tet with a face on
-// the outer boundary. In a scene of one intact body there are no candidates and the system does nothing
-// but look at the fracture log's length: it wakes with the first break.
+// no step passes between cohesion and contact), and once the system is awake those of every damaged joint,
+// from its first damage (a softening joint hinges, add_damaged_joints()); in a mesh of several bodies, every
+// tet with a face on the outer boundary. In a scene of one intact body there are no candidates and the
+// system does nothing but look at the fracture log's length: it wakes with the first break.
 //
 // Which pairs are excluded: two tets that are still tied at a point, i.e. some corner of one and some
 // corner of the other are copies of one vertex of the continuous mesh (engine/mesh/mesh_conversion.hpp:
@@ -15,8 +16,8 @@
 // their interaction; contact across a crack starts where the crack has separated the copies, so tets
 // around a crack front (still tied around it) never push each other apart. Likewise two tets of one body
 // outside the fracture zone (a node-sharing continuum does not touch itself at strains a tet survives).
-// Never excluded: the two tets of a broken joint. Tied elsewhere (at the crack front), they would otherwise
-// sink into each other under compression with nothing to stop them.
+// Never excluded: the two tets of a damaged or broken joint. Tied elsewhere (at the crack front), or by the
+// joint itself while it softens, they would otherwise sink into each other with nothing to stop them.
 //
 // When to detect: at the first step with candidates, whenever candidates join, and when some candidate
 // node has moved by more than buffer / 2 since the last detection (the criterion in
@@ -104,6 +105,10 @@ class ContactSystem : public System {
  private:
   void wake();
   bool add_new_candidates();
+  bool add_damaged_joints();
+  void add_candidate(int32_t tet);
+  void join_joint_pair(size_t joint);
+  void merge_joined_pairs(size_t before);
   bool detection_needed();
   void detect();
   void compute_forces(const StepContext& ctx);
@@ -125,11 +130,12 @@ class ContactSystem : public System {
   // Built at the first wake (a scene that never breaks never pays for it).
   std::unique_ptr<MeshConversion> grouping_;
   size_t events_seen_ = 0;
+  int64_t onsets_seen_ = 0;  // solid_joint_state.damage_onsets at the last scan for damaged joints
   bool awake_ = false, must_detect_ = false;
   std::vector<uint8_t> is_candidate_;  // per tet
   std::vector<int32_t> candidates_;    // tet ids, in the order they joined (the broad phase ignores order)
-  // The two tets of every broken joint (a < b), sorted: never excluded as tied (detect()).
-  std::vector<kernels::ContactPair> broken_pairs_;
+  // The two tets of every damaged or broken joint (a < b), sorted: never excluded as tied (detect()).
+  std::vector<kernels::ContactPair> joined_pairs_;
   // Scratch reused between steps and detections.
   std::vector<double> lo_, hi_;
   kernels::BroadPhaseWorkspace broad_;

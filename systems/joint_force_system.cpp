@@ -21,6 +21,9 @@ JointForceSystem::JointForceSystem(Store& store, std::vector<kernels::JointMater
   const size_t joints = store_.table(solid::joint_table).size();
   blocks_.resize((joints + grain - 1) / grain);
   breaks_.resize(joints);
+  Table& state = store_.add_table(solid::joint_state_table);
+  state.add<int64_t>("damage_onsets");
+  state.resize(1);
 }
 
 Access JointForceSystem::access() const {
@@ -32,6 +35,7 @@ Access JointForceSystem::access() const {
                                   col(J, "stored_energy"), col(V, "step"),  col(V, "time"),
                                   col(V, "joint"),         col(V, "mode"),  col(V, "centroid"),
                                   col(V, "normal"),        col(V, "area"),  col(V, "released_energy")};
+  writes.push_back(col(solid::joint_state_table, "damage_onsets"));
   if (store_.table(J).has("residual_anchor")) writes.push_back(col(J, "residual_anchor"));
   return {{col(solid::node_table, "x"), col(J, "nodes"), col(J, "material"), col(J, "initial_offset")},
           writes,
@@ -68,6 +72,9 @@ void JointForceSystem::run(const StepContext& ctx) {
   for (const auto& b : blocks_) total += b;
   degenerate_ = total.degenerate;
   short_softening_ = total.short_softening;
+  if (total.damage_onsets > 0)
+    store_.table(solid::joint_state_table).span<int64_t>("damage_onsets")[0] +=
+        static_cast<int64_t>(total.damage_onsets);
   if (total.broke > 0) record_events(ctx, std::min(break_count_.load(), breaks_.size()));
 }
 

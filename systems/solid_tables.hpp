@@ -8,6 +8,8 @@ namespace rift::solid {
 inline constexpr const char* node_table = "solid_node";
 inline constexpr const char* tet_table = "solid_tet";
 inline constexpr const char* joint_table = "solid_joint";
+// One row: damage_onsets (int64), the integration points that have begun to soften so far.
+inline constexpr const char* joint_state_table = "solid_joint_state";
 inline constexpr const char* face_table = "solid_load_face";
 inline constexpr const char* slot_table = "solid_force_slot";
 inline constexpr const char* event_table = "solid_fracture_event";

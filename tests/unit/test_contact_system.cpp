@@ -174,3 +174,38 @@ TEST(ContactSystem, MatchedPenaltiesAreNeverStifferThanTheJointsAndLeaveTheStepT
   const double xi = c * undamped / (dt_c * dt_c);
   EXPECT_DOUBLE_EQ(summary["solid"]["stable_dt"].get<double>(), undamped * (std::sqrt(1.0 + xi * xi) - xi));
 }
+
+// A softening joint can hinge about the line through its compressed integration points, which do not see
+// its corners overlap the neighbour; tied by the joint, the pair was excluded from contact until the joint
+// broke, and the contact then met the whole overlap at once (docs/contact.md, "Who takes part"). From its
+// first damage a joint's two tets take part, tied or not, and a restart keeps them (the joint's in_contact).
+TEST(ContactSystem, ADamagedJointsTetsTakePartWhileTheJointStillHolds) {
+  auto sim = start(validation("contact_cut_column.yaml"));
+  sim->step_once();  // the initial crack wakes the system
+  Table& joints = sim->world().store.table(solid::joint_table);
+  const auto broken = joints.span<const uint8_t>("broken");
+  const auto tets = joints.span<const int32_t>("tets");
+  auto in_contact = joints.span<uint8_t>("in_contact");
+  auto pair_listed = [&](size_t j) {
+    const Table& pairs = table(*sim, solid::contact_pair_table);
+    const auto listed = pairs.span<const int32_t>("tets");
+    const int32_t a = std::min(tets[2 * j], tets[2 * j + 1]), b = std::max(tets[2 * j], tets[2 * j + 1]);
+    for (size_t p = 0; p < pairs.size(); ++p)
+      if (listed[2 * p] == a && listed[2 * p + 1] == b) return true;
+    return false;
+  };
+  size_t intact = joints.size();
+  for (size_t j = 0; j < joints.size() && intact == joints.size(); ++j)
+    if (broken[j] == 0 && !pair_listed(j)) intact = j;
+  ASSERT_LT(intact, joints.size()) << "every intact joint's pair is already in contact";
+  EXPECT_EQ(in_contact[intact], 0);
+
+  const size_t points = joints.span<const double>("d_max").size() / joints.size();
+  // One integration point half way to failure, booked as the joint kernel books an onset.
+  joints.span<double>("d_max")[points * intact] = 0.5;
+  sim->world().store.table(solid::joint_state_table).span<int64_t>("damage_onsets")[0] += 1;
+  sim->step_once();
+  EXPECT_EQ(in_contact[intact], 1);
+  EXPECT_TRUE(pair_listed(intact)) << "joint " << intact << " is damaged but its tets are still excluded";
+  EXPECT_EQ(broken[intact], 0);
+}

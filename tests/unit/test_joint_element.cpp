@@ -100,9 +100,10 @@ TEST_P(BothRules, FailureCountRule) {
       }
       if (near) continue;
       j.run();
-      int failed = 0;
-      for (double d : j.d_max) failed += d >= 1.0;
+      int failed = 0, damaged = 0;
+      for (double d : j.d_max) failed += d >= 1.0, damaged += d > 0.0;
       EXPECT_EQ(failed, predicted);
+      EXPECT_EQ(j.status.damage_onsets, static_cast<size_t>(damaged));  // from an undamaged start
       EXPECT_EQ(j.is_broken(), predicted >= rule.fail_count) << "predicted " << predicted;
       EXPECT_EQ(j.status.broke, predicted >= rule.fail_count ? 1u : 0u);
       seen[static_cast<size_t>(predicted)] = true;
@@ -494,6 +495,13 @@ TEST(JointForces, VectorMatchesScalarReference) {
         run_random(joints, rule, offsets, &joint_forces, true, vec);
         EXPECT_GT(ref.status.broke, 50u);
         EXPECT_GT(ref.status.degenerate, 10u);
+        // The points whose damage began in this call (the contact takes in their joints' tets).
+        size_t onsets = 0;
+        for (size_t i = 0; i < joints.d_max.size(); ++i)
+          onsets += joints.d_max[i] == 0.0 && ref.d_max[i] > 0.0;
+        EXPECT_GT(onsets, 10u);
+        EXPECT_EQ(ref.status.damage_onsets, onsets);
+        EXPECT_EQ(vec.status.damage_onsets, onsets);
         if (rule == Softening::energy_exact) {
           EXPECT_GT(ref.status.short_softening, 10u);
         }

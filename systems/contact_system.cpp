@@ -303,8 +303,9 @@ void ContactSystem::run(const StepContext& ctx) {
         !awake_ && store_.table(solid::contact_state_table).span<const int64_t>("detections")[0] > 0;
     must_detect_ = (add_new_candidates() && !restored) || must_detect_;
   }
-  // Damage begins at a few points per step at most, and at none on most steps: the joints are scanned only
-  // after some did (a restored run scans once, finding nothing its checkpoint did not already hold).
+  // Damage begins at a few points on few steps: the joints are scanned only after some did (142 scans in
+  // the 55,556 steps of the coarse wedge's flow sibling to 0.5 ms, 265 in hydraulic_fracture.yaml's
+  // 30,286). A restored run scans once, finding nothing its checkpoint did not already hold.
   if (awake_ && store_.has(solid::joint_state_table)) {
     const int64_t onsets = store_.table(solid::joint_state_table).span<const int64_t>("damage_onsets")[0];
     if (onsets > onsets_seen_) {

@@ -46,10 +46,6 @@ struct MshSpec {
   int one = 1, data_size = 8;
 };
 
-// Three tets on sparse node tags 10..60 plus node 70 that only a point element uses. Tet 105 is positive,
-// 106 and 107 negative. Volume entity 1 is in physicals 7 "rock" and 8, entity 2 in 9, entity 3 in none;
-// surface entity 1 in physicals 3 "base" and 5, entity 2 in "base", entity 3 in none. A point (type 15), a
-// line (type 1) and a 10-node tet (type 11) are skipped.
 // Every part of two meshes is equal.
 inline void expect_same_mesh(const TetMesh& a, const TetMesh& b) {
   EXPECT_EQ(a.nodes, b.nodes);
@@ -61,6 +57,10 @@ inline void expect_same_mesh(const TetMesh& a, const TetMesh& b) {
   EXPECT_EQ(a.surface_names, b.surface_names);
 }
 
+// Three tets on sparse node tags 10..60 plus node 70 that only a point element uses. Tet 105 is positive,
+// 106 and 107 negative. Volume entity 1 is in physicals 7 "rock" and 8, entity 2 in 9, entity 3 in none;
+// surface entity 1 in physicals 3 "base" and 5, entity 2 in "base", entity 3 in none. A point (type 15), a
+// line (type 1) and a 10-node tet (type 11) are skipped.
 inline MshSpec cube_spec() {
   MshSpec s;
   s.names = {{3, 7, "rock"}, {2, 3, "base"}, {1, 11, "an edge"}};

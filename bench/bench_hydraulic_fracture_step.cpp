@@ -17,8 +17,8 @@
 
 #include "bench/bench_common.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
+#include "systems/simulation.hpp"
 
 namespace {
 

@@ -35,7 +35,7 @@
 
 #include "bench/bench_common.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 
 namespace {
 

@@ -1,10 +1,6 @@
 #include "engine/world.hpp"
 
-#include <fmt/format.h>
-#include <spdlog/spdlog.h>
-
-#include <chrono>
-#include <cmath>
+#include <algorithm>
 #include <limits>
 
 #include "engine/core/error.hpp"
@@ -16,14 +12,7 @@
 #include "engine/mesh/element_estimate.hpp"
 #include "engine/mesh/graded_axis.hpp"
 #include "engine/mesh/msh_reader.hpp"
-#include "engine/mesh/spatial_order.hpp"
 #include "engine/mesh/structured_box.hpp"
-#include "systems/coupling/fluid_solid_model.hpp"
-#include "systems/fluid/fluid_model.hpp"
-#include "systems/fluid/fluid_tables.hpp"
-#include "systems/fracture_flow/fracture_flow_model.hpp"
-#include "systems/mesh_conversion_model.hpp"
-#include "systems/solid_model.hpp"
 
 namespace rift {
 
@@ -71,105 +60,6 @@ TetMesh load_mesh(const MeshSpec& spec, const std::string& section) {
   if (spec.generate->shape == MeshGenerateSpec::Shape::cylinder)
     return generate_cylinder_mesh(*spec.generate);
   return generate_box_mesh(*spec.generate);
-}
-
-// Surfaces that existed before any fracture and are not the outer boundary: the generator's notches, or a
-// mesh file's physical surfaces whose name starts with "notch".
-std::vector<std::string> notch_surfaces(const MeshSpec& spec, const TetMesh& mesh) {
-  std::vector<std::string> names;
-  if (spec.generate)
-    for (const auto& n : spec.generate->notches) names.push_back(n.name);
-  else
-    for (const auto& s : mesh.surface_names)
-      if (s.rfind("notch", 0) == 0) names.push_back(s);
-  return names;
-}
-
-namespace {
-
-// A fluid on its own mesh around the solid (scene.fluid->mesh, required with a solid), and the coupling.
-// The run's step is the solid's: fluid.dt / substeps.
-// conversion: the solid's continuous meshes (non-null with fluid.adapt, whose mesh follows its surface).
-void add_coupled_fluid(World& world, const Scene& scene, MeshConversionModel* conversion) {
-  const FluidSpec& fluid = *scene.fluid;
-  const FluidSolidSpec& spec = *scene.fluid_solid;
-  auto& solid = static_cast<SolidModel&>(*world.models.front());
-  const double stable = solid.stable_dt();
-  const int64_t automatic = FluidSolidModel::automatic_substeps(fluid.dt, stable, scene.time.safety);
-  const int64_t substeps = spec.substeps > 0 ? spec.substeps : automatic;
-  if (spec.substeps > 0 && fluid.dt / static_cast<double>(substeps) > stable && !scene.time.allow_unstable_dt)
-    throw Error(fmt::format(
-        "fluid_solid.substeps = {} makes the solid step fluid.dt / substeps = {:.6g} s, above the solid's "
-        "stable step {:.6g} s. Use fluid_solid.substeps >= {} ({} at time.safety = {}), or 0 to choose it, "
-        "or set time.allow_unstable_dt: true to run it on purpose.",
-        substeps, fluid.dt / static_cast<double>(substeps), stable,
-        static_cast<int64_t>(std::ceil(fluid.dt / stable)), automatic, scene.time.safety));
-  const double windows = scene.time.end / fluid.dt;
-  if (std::abs(windows - std::round(windows)) > 1e-6 * windows)
-    throw Error(
-        fmt::format("time.end = {:.6g} s is not a whole number of fluid steps of {:.6g} s (fluid.dt): "
-                    "{:.6g}. Make time.end a multiple of fluid.dt, e.g. {:.6g} s.",
-                    scene.time.end, fluid.dt, windows, std::ceil(windows) * fluid.dt));
-  spdlog::info("fluid-solid coupling: {} solid steps of {:.6g} s per fluid step of {:.6g} s{}", substeps,
-               fluid.dt / static_cast<double>(substeps), fluid.dt, spec.substeps > 0 ? "" : " (automatic)");
-  std::unique_ptr<FluidMeshAdapter> adapter;
-  if (fluid.adapt) {  // the mesh around the solid as it is at t = 0, remade as it deforms and breaks
-    adapter =
-        std::make_unique<FluidMeshAdapter>(world.store, *conversion, *fluid.mesh->generate, *fluid.adapt);
-    world.fluid_mesh = std::make_unique<TetMesh>(adapter->make());
-  } else {
-    world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh, "fluid.mesh"));
-    order_along_curve(*world.fluid_mesh);
-  }
-  const char* F = fluid::tet_table;
-  auto model = std::make_unique<FluidModel>(
-      world.store, *world.fluid_mesh, fluid, substeps,
-      std::vector<std::string>{fluid::col(F, "solid_fraction"), fluid::col(F, "absorption"),
-                               fluid::col(F, "solid_velocity")});
-  FluidModel& f = *model;
-  world.models.push_back(std::move(model));
-  std::vector<int32_t> well_wall_tets;  // the network's well, whose fluid cells the network owns
-  for (const auto& m : world.models)
-    if (const auto* flow = dynamic_cast<const FractureFlowModel*>(m.get()))
-      well_wall_tets = flow->well_wall_tets();
-  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec, std::move(adapter),
-                                                           std::move(well_wall_tets)));
-}
-
-}  // namespace
-
-std::unique_ptr<World> build_world(const Scene& scene) {
-  auto world = std::make_unique<World>();
-  const auto t0 = std::chrono::steady_clock::now();
-  // A fluid scene may give its mesh as fluid.mesh; with a solid, the top-level mesh is the solid's.
-  const MeshSpec& mesh_spec =
-      scene.fluid && scene.fluid->mesh && !scene.solid ? *scene.fluid->mesh : scene.mesh;
-  world->mesh = load_mesh(mesh_spec);
-  order_along_curve(world->mesh);  // neighbours close in memory (engine/mesh/spatial_order.hpp)
-  world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  world->mesh_quality = measure_quality(world->mesh);
-  if (scene.solid)
-    world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
-  if (scene.fracture_flow)  // right after the solid: its step follows the node pass
-    world->models.push_back(std::make_unique<FractureFlowModel>(
-        world->store, static_cast<SolidModel&>(*world->models.front()), world->mesh, *scene.fracture_flow));
-  // The continuous meshes only when something consumes them: the adaptive fluid mesh (before the fluid,
-  // whose first mesh follows the solid's surface), or an output that asks for the surface (last).
-  MeshConversionModel* conversion = nullptr;
-  auto add_conversion = [&] {
-    auto model = std::make_unique<MeshConversionModel>(world->store, world->mesh,
-                                                       notch_surfaces(scene.mesh, world->mesh));
-    conversion = model.get();
-    world->models.push_back(std::move(model));
-  };
-  if (scene.solid && scene.fluid && scene.fluid->adapt) add_conversion();
-  if (scene.fluid && scene.solid) {
-    add_coupled_fluid(*world, scene, conversion);
-  } else if (scene.fluid) {
-    world->models.push_back(std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
-  }
-  if (scene.solid && scene.output.surface && !conversion) add_conversion();
-  return world;
 }
 
 }  // namespace rift

@@ -1,6 +1,8 @@
 #pragma once
 // Everything a run simulates, built from a scene: the mesh, the store of tables, and one model per
-// physics section present in the scene (model only what the scene requires).
+// physics section present in the scene (model only what the scene requires). The engine holds and runs
+// it; which models a scene needs, and in what order, is the composition root's (systems/world_builder.hpp).
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -24,8 +26,9 @@ struct World {
   double stable_dt() const;              // the smallest of the models' limits
 };
 
-// Reads or generates the mesh and builds the models. Throws rift::Error with a complete message.
-std::unique_ptr<World> build_world(const Scene& scene);
+// Reads or generates the mesh and builds the models; throws rift::Error with a complete message.
+using WorldBuilder = std::function<std::unique_ptr<World>(const Scene& scene)>;
+
 // `section` names the spec's scene section in messages ("mesh", "fluid.mesh").
 TetMesh load_mesh(const MeshSpec& spec, const std::string& section = "mesh");
 

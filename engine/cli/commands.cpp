@@ -22,10 +22,10 @@
 #include "engine/core/log.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/plot/run_plot.hpp"
+#include "engine/run_loop.hpp"
 #include "engine/run_report.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/scene/scene_schema.hpp"
-#include "engine/simulation.hpp"
 #include "engine/sweep/reference_metrics.hpp"
 #include "engine/sweep/sweep.hpp"
 #include "rift/build_info.hpp"
@@ -50,7 +50,7 @@ std::optional<Scene> read_scene(const SceneArgs& args) {
 }
 
 void on_signal(int) {
-  Simulation::interrupt_flag().store(true);
+  RunLoop::interrupt_flag().store(true);
   // A second signal ends the process at once.
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
@@ -66,7 +66,7 @@ static void print_run_report(const std::filesystem::path& out_dir) {
   if (!summary.is_discarded()) std::cout << run_report(summary);
 }
 
-int run(const RunArgs& args) {
+int run(const RunArgs& args, const WorldBuilder& build) {
   init_logging(false, args.quiet);
   auto scene = read_scene(args.scene);
   if (!scene) return 2;
@@ -82,9 +82,9 @@ int run(const RunArgs& args) {
     std::cerr << "--restart: expected 'latest', found '" << args.restart << "'\n";
     return 2;
   }
-  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<RunLoop> sim;
   try {
-    sim = std::make_unique<Simulation>(std::move(*scene), options);
+    sim = std::make_unique<RunLoop>(std::move(*scene), options, build);
   } catch (const Error& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -156,7 +156,7 @@ int schema(const std::string& out_file) {
   return 0;
 }
 
-int sweep(const SweepArgs& args) {
+int sweep(const SweepArgs& args, const WorldBuilder& build) {
   init_logging(false, true);
   if (args.scene.scene.empty()) {
     std::cerr << "rift sweep: give a scene file\n";
@@ -166,6 +166,7 @@ int sweep(const SweepArgs& args) {
   o.scene_path = args.scene.scene;
   o.overrides = args.scene.overrides;
   o.threads = args.threads;
+  o.build_world = build;
   try {
     for (const auto& v : args.vary) o.axes.push_back(parse_sweep_axis(v));
     o.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") /
@@ -193,7 +194,7 @@ int sweep(const SweepArgs& args) {
   }
 }
 
-int check(const SceneArgs& args) {
+int check(const SceneArgs& args, const WorldBuilder& build) {
   init_logging(false, true);
   auto scene = read_scene(args);
   if (!scene) return 2;
@@ -206,7 +207,7 @@ int check(const SceneArgs& args) {
     RunOptions options;
     options.write_output = false;
     options.progress = false;
-    Simulation set_up(std::move(*scene), options);
+    RunLoop set_up(std::move(*scene), options, build);
   } catch (const Error& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -248,7 +249,7 @@ int info() {
   return 0;
 }
 
-int graph(const SceneArgs& args, int threads) {
+int graph(const SceneArgs& args, int threads, const WorldBuilder& build) {
   init_logging(false, true);
   auto scene = read_scene(args);
   if (!scene) return 2;
@@ -257,7 +258,7 @@ int graph(const SceneArgs& args, int threads) {
     options.write_output = false;
     options.progress = false;
     options.threads = threads;
-    Simulation sim(std::move(*scene), options);
+    RunLoop sim(std::move(*scene), options, build);
     std::cout << sim.graph().dot();
   } catch (const Error& e) {
     std::cerr << e.what() << "\n";

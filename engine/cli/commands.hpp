@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/render/run_render.hpp"
+#include "engine/world.hpp"
 
 namespace rift::cli {
 
@@ -32,11 +33,13 @@ struct SweepArgs {
   int threads = 1;
 };
 
-int run(const RunArgs& args);
-int sweep(const SweepArgs& args);
-int check(const SceneArgs& args);
+// build: the composition root's world builder (systems/world_builder.hpp), handed in by the program's entry
+// (systems/rift_main.cpp): the CLI runs scenes without knowing their physics.
+int run(const RunArgs& args, const WorldBuilder& build);
+int sweep(const SweepArgs& args, const WorldBuilder& build);
+int check(const SceneArgs& args, const WorldBuilder& build);
 int info();
-int graph(const SceneArgs& args, int threads);
+int graph(const SceneArgs& args, int threads, const WorldBuilder& build);
 // rift plot RUN_DIR [--out DIR]: PNGs of the run's time series (engine/plot/run_plot.hpp).
 int plot(const std::string& run_dir, const std::string& out_dir);
 // rift render RUN_DIR [options]: field pictures drawn by ParaView (engine/render/run_render.hpp).

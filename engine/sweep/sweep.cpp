@@ -13,8 +13,8 @@
 #include "engine/core/spawn.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/output_dir.hpp"
+#include "engine/run_loop.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
 #include "engine/sweep/reference_metrics.hpp"
 #include "engine/sweep/sweep_plot.hpp"
 
@@ -163,6 +163,7 @@ std::string plot(const fs::path& dir, const std::string& title) {
 }  // namespace
 
 SweepResult run_sweep(const SweepOptions& o) {
+  if (!o.build_world) throw Error("rift sweep: no world builder was handed in (SweepOptions::build_world)");
   if (o.axes.empty()) throw Error("rift sweep: give at least one --vary key.path=v1,v2,...");
   size_t variants = 1;
   for (const auto& a : o.axes) variants *= a.values.size();
@@ -226,7 +227,7 @@ SweepResult run_sweep(const SweepOptions& o) {
       ro.threads = o.threads;
       ro.progress = false;
       ro.overwrite = true;  // a variant not done (interrupted, failed) is run again from the start
-      Simulation sim(scenes[i], ro);
+      RunLoop sim(scenes[i], ro, o.build_world);
       const RunResult r = sim.run();
       row.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (r.stop_reason == "signal") {

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/world.hpp"
+
 namespace rift {
 
 struct SweepAxis {
@@ -33,6 +35,7 @@ struct SweepOptions {
   std::filesystem::path out_dir;
   int threads = 1;
   bool plot = true;
+  WorldBuilder build_world;  // the composition root's (systems/world_builder.hpp)
 };
 
 struct SweepRow {

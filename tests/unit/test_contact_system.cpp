@@ -9,7 +9,7 @@
 
 #include "engine/mesh/block_assembly.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
 

@@ -9,7 +9,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"

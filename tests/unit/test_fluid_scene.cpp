@@ -11,8 +11,8 @@
 #include "engine/core/error.hpp"
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
 #include "systems/fluid/fluid_model.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_run_support.hpp"
 
 using namespace rift;

@@ -11,8 +11,8 @@
 
 #include "engine/core/error.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
+#include "systems/simulation.hpp"
 #include "systems/solid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"

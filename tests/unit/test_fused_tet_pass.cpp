@@ -12,7 +12,7 @@
 
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 
 using namespace rift;
 

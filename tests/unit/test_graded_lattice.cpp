@@ -15,6 +15,7 @@
 #include "engine/mesh/structured_box.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/world.hpp"
+#include "systems/world_builder.hpp"
 
 namespace rift {
 namespace {

@@ -9,7 +9,7 @@
 #include "engine/core/error.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 
 namespace rift {

@@ -9,7 +9,7 @@
 
 #include "engine/core/state_hash.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_checkpoint_damage.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 
 namespace rift::test {
 

@@ -8,7 +8,7 @@
 #include <new>
 
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_allocation_counter.hpp"
 
 TEST(SteadyState, StepsAllocateNothing) {

@@ -9,8 +9,8 @@
 
 #include "engine/io/hdf5_file.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
 #include "systems/mesh_conversion_model.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "engine/core/state_hash.hpp"
-#include "engine/simulation.hpp"
 #include "systems/fracture_flow/fracture_flow_model.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 

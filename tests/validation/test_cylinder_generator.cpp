@@ -24,6 +24,7 @@
 #include "engine/mesh/mesh_quality.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "engine/world.hpp"
+#include "systems/world_builder.hpp"
 
 namespace rift {
 namespace {

@@ -22,9 +22,9 @@
 
 #include "engine/core/error.hpp"
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
 #include "systems/fluid/fluid_model.hpp"
 #include "systems/fluid/fluid_tables.hpp"
+#include "systems/simulation.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 #include "tests/unit/test_run_support.hpp"
 #include "tests/validation/fracture_flow_support.hpp"

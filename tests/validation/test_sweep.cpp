@@ -12,6 +12,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/spawn.hpp"
 #include "engine/sweep/sweep.hpp"
+#include "systems/world_builder.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 
 namespace rift {
@@ -24,6 +25,7 @@ SweepOptions single_joint_sweep(const fs::path& out) {
   o.scene_path = std::string(RIFT_SOURCE_DIR) + "/scenes/validation/single_joint_mode_I.yaml";
   o.axes = {parse_sweep_axis("solid.fracture.integration_points=3,7")};
   o.out_dir = out;
+  o.build_world = build_world;
   return o;
 }
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/scene/load_scene.hpp"
-#include "engine/simulation.hpp"
+#include "systems/simulation.hpp"
 #include "systems/solid_model.hpp"
 
 namespace rift::validation {

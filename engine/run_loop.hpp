@@ -1,6 +1,8 @@
 #pragma once
-// A run: the world built from a scene, its step graph, and the loop that advances it with outputs,
-// checkpoints, guards and a progress line. The CLI, the tests and the benchmarks all go through here.
+// The runtime of a run: the world a builder makes from a scene, its step graph, and the loop that advances
+// it with outputs, checkpoints, guards and a progress line. The engine knows no physics: which models a
+// scene needs is the composition root's (systems/world_builder.hpp), which the CLI, the tests and the
+// benchmarks reach through systems/simulation.hpp.
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -37,10 +39,11 @@ struct RunResult {
   double wall_seconds = 0.0;
 };
 
-class Simulation {
+class RunLoop {
  public:
-  Simulation(Scene scene, RunOptions options);
-  ~Simulation();
+  // build: makes the world (mesh, store, models) from the scene; it may reject the scene with rift::Error.
+  RunLoop(Scene scene, RunOptions options, const WorldBuilder& build);
+  ~RunLoop();
 
   RunResult run();
   void step_once();  // one step without outputs (benchmarks, tests)

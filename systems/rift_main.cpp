@@ -1,13 +1,16 @@
-// rift: command-line entry point. The subcommands live in engine/cli/commands.cpp.
+// rift: the program. The command line and its subcommands are the engine's (engine/cli/commands.cpp);
+// the scenes' worlds are built by the composition root (systems/world_builder.hpp), handed to them here.
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 #include <new>
 
 #include "engine/cli/commands.hpp"
+#include "systems/world_builder.hpp"
 
 int main(int argc, char** argv) {
   using namespace rift::cli;
+  using rift::build_world;
   CLI::App app{"Rift: fluid-driven fracture in rock (FEMDEM solid, implicit fluid).", "rift"};
   app.require_subcommand(1);
 
@@ -88,11 +91,11 @@ int main(int argc, char** argv) {
   // The commands report what a user or a run can run into (rift::Error) themselves. Anything else is a
   // defect of Rift: it still ends with a message and exit 1, not an abort.
   try {
-    if (*run_cmd) return run(run_args);
-    if (*check_cmd) return check(check_args);
+    if (*run_cmd) return run(run_args, build_world);
+    if (*check_cmd) return check(check_args, build_world);
     if (*info_cmd) return info();
-    if (*graph_cmd) return graph(graph_args, graph_threads);
-    if (*sweep_cmd) return sweep(sweep_args);
+    if (*graph_cmd) return graph(graph_args, graph_threads, build_world);
+    if (*sweep_cmd) return sweep(sweep_args, build_world);
     if (*plot_cmd) return plot(plot_dir, plot_out);
     if (*render_cmd) return render(render_dir, render_options);
     if (*schema_cmd) return schema(schema_out);

@@ -1,4 +1,4 @@
-#include "engine/simulation.hpp"
+#include "engine/run_loop.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -32,18 +32,18 @@ double seconds_since(clock_type::time_point t0) {
 }
 }  // namespace
 
-std::atomic<bool>& Simulation::interrupt_flag() {
+std::atomic<bool>& RunLoop::interrupt_flag() {
   static std::atomic<bool> flag{false};
   return flag;
 }
 
-Simulation::Simulation(Scene scene, RunOptions options)
+RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
     : scene_(std::move(scene)), options_(std::move(options)) {
   // Everything that can reject the input happens before the output folder is touched.
   if (options_.write_output) buffer_log_messages();
   spdlog::info("scene '{}' ({}), hash {}", scene_.name,
                scene_.source_file.empty() ? "built-in" : scene_.source_file, scene_.hash);
-  world_ = build_world(scene_);
+  world_ = build(scene_);
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
@@ -81,7 +81,7 @@ std::string some_names(const std::vector<std::string>& names, size_t shown) {
 // A new run never mixes its files with an earlier run's (a longer run's later outputs would stay beside
 // the new ones, and its checkpoints would be taken for this run's): the folder is refused, or, with
 // overwrite, the earlier run's files (Rift's names only) are deleted first.
-void Simulation::refuse_or_clear_earlier_run() {
+void RunLoop::refuse_or_clear_earlier_run() {
   const std::vector<std::string> earlier = earlier_run_files(options_.out_dir);
   if (earlier.empty()) return;
   const std::string named = some_names(earlier, 5);
@@ -95,7 +95,7 @@ void Simulation::refuse_or_clear_earlier_run() {
 
 // A run killed while writing leaves "<output>.tmp-<pid>" files; the next run in the folder deletes those
 // of its own outputs (never checkpoints' here: CheckpointSet prunes its folder).
-void Simulation::remove_killed_writers_files() {
+void RunLoop::remove_killed_writers_files() {
   static constexpr std::string_view kRunFiles[] = {"scene.yaml", "timeseries.csv", "summary.json",
                                                    "fractures.csv"};
   const auto removed = remove_orphan_temp_files(options_.out_dir, [&](std::string_view name) {
@@ -107,7 +107,7 @@ void Simulation::remove_killed_writers_files() {
                  options_.out_dir.string(), fmt::join(removed, ", "));
 }
 
-Simulation::~Simulation() {
+RunLoop::~RunLoop() {
   join_background_quietly();  // before the graph's arena and the world go
   if (options_.write_output) close_log_file();
 }
@@ -115,7 +115,7 @@ Simulation::~Simulation() {
 // Work a model runs beside the graph (Model::before_step) overlaps every system of the graph, so no system
 // may write a column that work touches or read one it writes: checked once, from the declared access, the
 // same rule the graph orders its own systems by.
-void Simulation::check_background_access() {
+void RunLoop::check_background_access() {
   for (const auto& m : world_->models) {
     const Access background = m->background_access();
     if (background.reads.empty() && background.writes.empty() && !background.changes_topology) continue;
@@ -129,14 +129,14 @@ void Simulation::check_background_access() {
   }
 }
 
-void Simulation::join_background() {
+void RunLoop::join_background() {
   if (!has_background_) return;
   graph_->in_arena([&] {
     for (const auto& m : world_->models) m->join();
   });
 }
 
-void Simulation::join_background_quietly() noexcept {
+void RunLoop::join_background_quietly() noexcept {
   try {
     join_background();
   } catch (const std::exception& e) {  // already stopping; the first error is the one reported
@@ -148,7 +148,7 @@ void Simulation::join_background_quietly() noexcept {
 // integer, and beyond int64's range the cast is undefined (it came back as one step of time.end, a run
 // that said `completed` after a single step far above its stable one). Such a run could not finish in any
 // case: it is refused with the figures that make it so.
-void Simulation::check_step_count(double steps, double dt, const std::string& source) const {
+void RunLoop::check_step_count(double steps, double dt, const std::string& source) const {
   constexpr double kMostSteps = 9007199254740992.0;  // 2^53
   if (std::isfinite(steps) && steps >= 0.0 && steps <= kMostSteps) return;
   throw Error(fmt::format(
@@ -159,7 +159,7 @@ void Simulation::check_step_count(double steps, double dt, const std::string& so
       scene_.time.end, dt, source, steps));
 }
 
-void Simulation::choose_dt() {
+void RunLoop::choose_dt() {
   const double stable = world_->stable_dt();
   const TimeSpec& t = scene_.time;
   // A model with its own step (the fluid's fluid.dt) fixes the run's: t = step x that dt exactly.
@@ -222,7 +222,7 @@ void Simulation::choose_dt() {
 // A checkpoint that cannot be read as one (truncated, foreign, another format, a checksum that fails) is
 // damage: the restart warns and takes the previous one. An intact checkpoint that does not fit this run
 // (another scene, dt, tables) is refused at once: the older ones of the same run would not fit either.
-void Simulation::restart_from_latest() {
+void RunLoop::restart_from_latest() {
   if (!checkpoints_) throw Error("--restart needs an output folder");
   std::vector<CheckpointProblem> skipped;
   const auto latest = checkpoints_->latest(&skipped);
@@ -297,7 +297,7 @@ void kill_at_step_if_asked(int64_t step) {
 
 }  // namespace
 
-void Simulation::step_once() {
+void RunLoop::step_once() {
   kill_at_step_if_asked(step_ + 1);
   const bool observed =
       observe_every_step_ || observe_next_ || (step_ + 1) % kObservedEvery == 0 || step_ + 1 == total_steps_;
@@ -321,7 +321,7 @@ void Simulation::step_once() {
       throw Error("run stopped by the " + m->name() + " guard: " + *diagnosis);
 }
 
-RunResult Simulation::run() {
+RunResult RunLoop::run() {
   const auto t0 = clock_type::now();
   RunResult result;
   Progress progress(total_steps_, scene_.time.end, options_.progress);
@@ -435,7 +435,7 @@ void check_finite(std::span<const XdmfGrid> grids, int64_t step, double time) {
 
 }  // namespace
 
-void Simulation::write_output() {
+void RunLoop::write_output() {
   const auto t0 = clock_type::now();
   std::vector<XdmfGrid> grids;
   for (const auto& m : world_->models) m->output_grids(grids, scene_.output.fields);
@@ -472,7 +472,7 @@ std::string key_quantities(const std::vector<std::string>& names, const std::vec
 
 }  // namespace
 
-void Simulation::record_metrics() {
+void RunLoop::record_metrics() {
   std::vector<std::pair<std::string, double>> row;
   for (const auto& m : world_->models) m->metrics(time(), row);
   if (metric_names_.empty())
@@ -488,12 +488,12 @@ void Simulation::record_metrics() {
 
 // The time series is rewritten (atomically) with each field output and checkpoint, not on every
 // metrics row: an fsync per step would dominate small runs.
-void Simulation::write_time_series() const {
+void RunLoop::write_time_series() const {
   write_text_atomic(options_.out_dir / "timeseries.csv", format_time_series(metric_names_, metric_rows_));
   for (const auto& m : world_->models) m->write_logs(options_.out_dir);
 }
 
-void Simulation::write_checkpoint() {
+void RunLoop::write_checkpoint() {
   // Everything a model runs beside the step ends first: a checkpoint is the store at rest.
   join_background();
   const auto t0 = clock_type::now();
@@ -511,7 +511,7 @@ void Simulation::write_checkpoint() {
   spdlog::debug("checkpoint {}", file.string());
 }
 
-void Simulation::write_summary(const RunResult& result) const {
+void RunLoop::write_summary(const RunResult& result) const {
   RunSummary summary;
   auto& j = summary.root();
   j["rift_version"] = build::version;
@@ -537,7 +537,7 @@ void Simulation::write_summary(const RunResult& result) const {
   summary.write(options_.out_dir / "summary.json");
 }
 
-void Simulation::log_timing_table() const {
+void RunLoop::log_timing_table() const {
   // Work beside the graph (the concurrent fluid step) overlaps it: it is listed, not added to the total.
   double total = output_seconds_ + checkpoint_seconds_;
   for (const auto& t : graph_->timings()) total += t.seconds;

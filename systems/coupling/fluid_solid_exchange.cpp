@@ -283,8 +283,8 @@ void SolidToFluidSystem::exchange() {
     covered += cells.solid_volume[k];
     cut += cells.fraction[k] > 0.0 && cells.fraction[k] < 1.0;
   }
-  state.span<double>("pairs")[0] = static_cast<double>(np);
-  state.span<double>("cut_cells")[0] = static_cast<double>(cut);
+  state.span<int64_t>("pairs")[0] = static_cast<int64_t>(np);
+  state.span<int64_t>("cut_cells")[0] = static_cast<int64_t>(cut);
   state.span<double>("solid_volume")[0] = covered;
 }
 
@@ -456,7 +456,7 @@ void FluidToSolidSystem::exchange(bool initial) {
         absorption[d] += sigma[k] * fluid_volume_[k] * (pairs_.fluid_velocity[3 * k + d] - target[3 * k + d]);
   if (!settings_.volume_force) wetted_face_total(force);
   watch_oscillation(force);
-  state.span<double>("exchanges")[0] += 1.0;
+  state.span<int64_t>("exchanges")[0] += 1;
   state.span<double>("penalty_scale")[0] = scale;
   for (int d = 0; d < 3; ++d) {
     state.span<double>("force")[d] = force[d];
@@ -507,7 +507,7 @@ void FluidToSolidSystem::watch_oscillation(const double force[3]) {
   const bool two_back = settings_.oscillation_lag == 2;
   auto older = two_back ? state.span<double>("older_change") : std::span<double>{};
   const auto reference = two_back ? older : change;
-  double& growing = state.span<double>("growing")[0];
+  int64_t& growing = state.span<int64_t>("growing")[0];
   double delta[3], dot = 0.0, norm_old = 0.0, norm = 0.0, size = 0.0;
   for (int d = 0; d < 3; ++d) {
     delta[d] = force[d] - previous[d];
@@ -517,7 +517,7 @@ void FluidToSolidSystem::watch_oscillation(const double force[3]) {
     size += force[d] * force[d];
   }
   const bool flips_and_grows = norm_old > 0.0 && -dot > norm_old && norm > 1e-12 * size;
-  growing = flips_and_grows ? growing + 1.0 : 0.0;
+  growing = flips_and_grows ? growing + 1 : 0;
   for (int d = 0; d < 3; ++d) {
     if (two_back) older[d] = change[d];
     change[d] = delta[d];

@@ -37,11 +37,11 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.solid_gravity = solid.spec().gravity;
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;
   Table& state = store_.add_table(coupling::state_table);
-  for (const char* c : {"exchanges", "pairs", "cut_cells", "solid_volume", "penalty_scale"})
-    state.add<double>(c, 1);
+  for (const char* c : {"exchanges", "pairs", "cut_cells"}) state.add<int64_t>(c, 1);
+  for (const char* c : {"solid_volume", "penalty_scale"}) state.add<double>(c, 1);
   for (const char* c : {"force", "penalty", "absorption", "previous_force", "previous_change"})
     state.add<double>(c, 3);
-  state.add<double>("growing", 1);
+  state.add<int64_t>("growing", 1);
   // The network inlet's books: the network's intake (its well's injected mass) at the last exchange, and
   // the mass the fluid has given up through the sink so far.
   if (spec.network_inlet)
@@ -50,7 +50,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   // fluid state is already the window's end, a checkpoint having joined the fluid step mid-window. A
   // restart from there must not take that step again.
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
-    state.add<double>("fluid_ahead", 1);
+    state.add<uint8_t>("fluid_ahead", 1);
     state.add<double>("older_change", 3);  // the oscillation watch's change two fluid steps back
   }
   state.resize(1);
@@ -84,8 +84,8 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
     solid.add_node_mass(store_.table(solid::node_table).span<double>("fluid_added_mass"));
   }
   to_solid_->exchange(/*initial=*/true);
-  store_.table(coupling::state_table).span<double>("growing")[0] = 0.0;
-  store_.table(coupling::state_table).span<double>("exchanges")[0] = 0.0;
+  store_.table(coupling::state_table).span<int64_t>("growing")[0] = 0;
+  store_.table(coupling::state_table).span<int64_t>("exchanges")[0] = 0;
 }
 
 FluidSolidModel::~FluidSolidModel() = default;
@@ -128,7 +128,7 @@ void FluidSolidModel::after_step(const StepContext& taken) {
     return;
   }
   concurrent_->join();
-  store_.table(coupling::state_table).span<double>("fluid_ahead")[0] = 0.0;
+  store_.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0] = 0;
   auto timed = [](SystemTiming& t, auto&& fn) {
     const auto t0 = std::chrono::steady_clock::now();
     fn();
@@ -160,7 +160,7 @@ void FluidSolidModel::fluid_mesh_changed() {
 void FluidSolidModel::join() {
   if (!concurrent_ || !concurrent_->running()) return;
   concurrent_->join();
-  store_.table(coupling::state_table).span<double>("fluid_ahead")[0] = 1.0;
+  store_.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0] = 1;
 }
 
 // What the fluid task may touch while the graph runs the solid's sub-steps: the fluid step's declared
@@ -197,7 +197,7 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
           "absorption overflowed. What to change: lower fluid.dt (with it the solid's window of "
           "fluid_solid.substeps steps).",
           t_fluid);
-  if (state.span<double>("growing")[0] >= 4.0) {
+  if (state.span<int64_t>("growing")[0] >= 4) {
     const Table& nodes = store_.table(solid::node_table);
     double mass = 0.0;
     for (double m : nodes.span<double>("mass")) mass += m;
@@ -263,8 +263,8 @@ void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>
   row.emplace_back("fluid_solid_penalty_y", penalty[1]);
   row.emplace_back("fluid_solid_penalty_z", penalty[2]);
   row.emplace_back("fluid_solid_solid_volume", state.span<double>("solid_volume")[0]);
-  row.emplace_back("fluid_solid_cut_cells", state.span<double>("cut_cells")[0]);
-  row.emplace_back("fluid_solid_pairs", state.span<double>("pairs")[0]);
+  row.emplace_back("fluid_solid_cut_cells", static_cast<double>(state.span<int64_t>("cut_cells")[0]));
+  row.emplace_back("fluid_solid_pairs", static_cast<double>(state.span<int64_t>("pairs")[0]));
   // The pressure range over the nodes of the cells the fluid fills (solid fraction below 0.5): the real
   // fluid's, without the fictitious fluid inside the solid, nor the cells the cracks' network owns (their
   // fluid is the network's, its pressure the network's vertices').
@@ -304,9 +304,9 @@ void FluidSolidModel::summarize(nlohmann::json& summary) const {
   s["force_model"] = settings_.volume_force ? "volume" : "wetted_faces";
   s["wetted_faces"] = pairs_.wet_faces.size();
   s["wetted_faces_outside_fluid"] = pairs_.wet_outside;
-  s["exchanges"] = static_cast<int64_t>(state.span<double>("exchanges")[0]);
-  s["pairs"] = static_cast<int64_t>(state.span<double>("pairs")[0]);
-  s["cut_cells"] = static_cast<int64_t>(state.span<double>("cut_cells")[0]);
+  s["exchanges"] = state.span<int64_t>("exchanges")[0];
+  s["pairs"] = state.span<int64_t>("pairs")[0];
+  s["cut_cells"] = state.span<int64_t>("cut_cells")[0];
   s["solid_volume"] = solid_volume_;
   s["solid_volume_in_fluid"] = state.span<double>("solid_volume")[0];
   const auto f = state.span<double>("force");

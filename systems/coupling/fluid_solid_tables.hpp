@@ -9,14 +9,15 @@
 //            solid sub-steps [N]); with fluid_solid.added_mass: fluid_added_mass (1, the virtual mass [kg],
 //            already in `mass`), window_velocity (3, v at the last exchange); with fluid_solid.coupling:
 //            concurrent: x_at_exchange (3, x at the last exchange, whose pairs the window's end uses)
-// fluid_solid: one row: exchanges (number so far), pairs and cut_cells (of the last exchange),
+// fluid_solid: one row: exchanges (i64, number so far), pairs and cut_cells (i64, of the last exchange),
 //            solid_volume (the solid volume inside the fluid mesh [m^3]), force (3, the total fluid force
 //            on the solid [N]), penalty (3, its absorption part), penalty_scale (sum of |penalty| over pairs
 //            and components: the round-off scale of the balance), absorption (3, the fluid's absorption force
 //            summed over its tets: minus `penalty` to round-off), previous_force (3), previous_change (3) and
-//            growing (1): the watch for a growing oscillation of the force (added-mass instability);
-//            concurrent only: older_change (3, the change two fluid steps back) and fluid_ahead (1: the
-//            stored fluid state is already the window's end, a checkpoint having joined its step)
+//            growing (i64, consecutive exchanges it grew): the watch for a growing oscillation of the force
+//            (added-mass instability); concurrent only: older_change (3, the change two fluid steps back)
+//            and fluid_ahead (u8, 1: the stored fluid state is already the window's end, a checkpoint having
+//            joined its step)
 namespace rift::coupling {
 
 inline constexpr const char* state_table = "fluid_solid";

@@ -117,9 +117,10 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
     faces.add<int32_t>("surface", 1).indexes(IndexTarget::list_of(mesh.surface_names.size()));
   }
   Table& step = store_.add_table(fluid::step_table);
-  for (const char* c : fluid::step_columns) step.add<double>(c, 1);
-  step.add<double>("has_previous", 1);
-  if (spec.adapt) step.add<double>("remeshes", 1);
+  for (const char* c : fluid::step_counts) step.add<int64_t>(c, 1);
+  for (const char* c : fluid::step_flags) step.add<uint8_t>(c, 1);
+  for (const char* c : fluid::step_measures) step.add<double>(c, 1);
+  if (spec.adapt) step.add<int64_t>("remeshes", 1);
   step.resize(1);
   store_mesh(mesh);
   const auto u = solver_->velocity();
@@ -315,12 +316,13 @@ void FluidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
 
 void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& row) {
   const Table& step = store_.table(fluid::step_table);
-  auto v = [&](const char* c) { return step.span<double>(c)[0]; };
-  row.emplace_back("fluid_picard_iterations", v("picard_iterations"));
-  row.emplace_back("fluid_picard_converged", v("converged"));
-  row.emplace_back("fluid_velocity_iterations", v("velocity_iterations"));
-  row.emplace_back("fluid_schur_iterations", v("schur_iterations"));
-  row.emplace_back("fluid_pressure_iterations", v("pressure_iterations"));
+  auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
+  auto n = [&](const char* c) { return static_cast<double>(step.span<const int64_t>(c)[0]); };
+  row.emplace_back("fluid_picard_iterations", n("picard_iterations"));
+  row.emplace_back("fluid_picard_converged", static_cast<double>(step.span<const uint8_t>("converged")[0]));
+  row.emplace_back("fluid_velocity_iterations", n("velocity_iterations"));
+  row.emplace_back("fluid_schur_iterations", n("schur_iterations"));
+  row.emplace_back("fluid_pressure_iterations", n("pressure_iterations"));
   row.emplace_back("fluid_divergence_l2", v("divergence_l2"));
   row.emplace_back("fluid_divergence_max", v("divergence_max"));
   row.emplace_back("fluid_cfl", v("cfl"));
@@ -343,21 +345,22 @@ void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& ro
 
 void FluidModel::summarize(nlohmann::json& summary) const {
   const Table& step = store_.table(fluid::step_table);
-  auto v = [&](const char* c) { return step.span<double>(c)[0]; };
+  auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
+  auto n = [&](const char* c) { return step.span<const int64_t>(c)[0]; };
   auto& s = summary["fluid"];
   s["nodes"] = solver_->node_count();
   s["tets"] = solver_->volumes().size();
   if (spec_.adapt) s["remeshes"] = mesh_revision();
   s["dt"] = spec_.dt;
   s["kinetic_energy"] = kinetic_energy();
-  s["picard_failures"] = static_cast<int64_t>(v("picard_failures"));
+  s["picard_failures"] = n("picard_failures");
   s["max_cfl"] = v("max_cfl");
   s["max_divergence"] = v("max_divergence");
-  s["last_step"] = {{"picard_iterations", static_cast<int64_t>(v("picard_iterations"))},
-                    {"converged", v("converged") != 0.0},
-                    {"velocity_iterations", static_cast<int64_t>(v("velocity_iterations"))},
-                    {"schur_iterations", static_cast<int64_t>(v("schur_iterations"))},
-                    {"pressure_iterations", static_cast<int64_t>(v("pressure_iterations"))},
+  s["last_step"] = {{"picard_iterations", n("picard_iterations")},
+                    {"converged", step.span<const uint8_t>("converged")[0] != 0},
+                    {"velocity_iterations", n("velocity_iterations")},
+                    {"schur_iterations", n("schur_iterations")},
+                    {"pressure_iterations", n("pressure_iterations")},
                     {"velocity_change", v("velocity_change")},
                     {"divergence_l2", v("divergence_l2")},
                     {"divergence_max", v("divergence_max")},
@@ -371,8 +374,7 @@ void FluidModel::summarize(nlohmann::json& summary) const {
 }
 
 int64_t FluidModel::mesh_revision() const {
-  return spec_.adapt ? static_cast<int64_t>(store_.table(fluid::step_table).span<const double>("remeshes")[0])
-                     : 0;
+  return spec_.adapt ? store_.table(fluid::step_table).span<const int64_t>("remeshes")[0] : 0;
 }
 
 void FluidModel::restored(const StepContext& at) {
@@ -381,7 +383,7 @@ void FluidModel::restored(const StepContext& at) {
     prepare_cell_geometry();
   }
   const Table& nodes = store_.table(fluid::node_table);
-  const bool previous = store_.table(fluid::step_table).span<const double>("has_previous")[0] != 0.0;
+  const bool previous = store_.table(fluid::step_table).span<const uint8_t>("has_previous")[0] != 0;
   solver_->restore_state(at.time, nodes.span<double>("velocity"), nodes.span<double>("pressure"),
                          store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient"),
                          previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{},

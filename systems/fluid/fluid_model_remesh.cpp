@@ -107,7 +107,7 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   const std::vector<double> old_x(nodes.span<const double>("x").begin(), nodes.span<const double>("x").end());
   const std::vector<int32_t> old_tets(tets.span<const int32_t>("nodes").begin(),
                                       tets.span<const int32_t>("nodes").end());
-  const bool previous = store_.table(fluid::step_table).span<const double>("has_previous")[0] != 0.0;
+  const bool previous = store_.table(fluid::step_table).span<const uint8_t>("has_previous")[0] != 0;
   // Candidate old tets of each new node: zero-size boxes against the old tets' boxes.
   const std::vector<double> points = flat_nodes(mesh);
   const size_t nt_old = old_tets.size() / 4;
@@ -142,7 +142,7 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   std::copy(su.begin(), su.end(), out.span<double>("velocity").begin());
   std::copy(sp.begin(), sp.end(), out.span<double>("pressure").begin());
   if (previous) std::copy(sprev.begin(), sprev.end(), out.span<double>("previous_velocity").begin());
-  store_.table(fluid::step_table).span<double>("remeshes")[0] += 1.0;
+  store_.table(fluid::step_table).span<int64_t>("remeshes")[0] += 1;
 }
 
 }  // namespace rift

@@ -1,6 +1,7 @@
 #include "systems/fluid/fluid_step_system.hpp"
 
 #include <algorithm>
+#include <span>
 
 #include "systems/fluid/fluid_tables.hpp"
 
@@ -13,8 +14,10 @@ Access FluidStepSystem::access() const {
               col(fluid::node_table, "previous_velocity"),
               col(fluid::tet_table, "pressure_matrix_coefficient"),
               col(fluid::tet_table, "pressure_subscale")};
-  for (const char* c : fluid::step_columns) a.writes.push_back(col(fluid::step_table, c));
-  a.writes.push_back(col(fluid::step_table, "has_previous"));
+  for (const auto& columns :
+       {std::span<const char* const>(fluid::step_counts), std::span<const char* const>(fluid::step_flags),
+        std::span<const char* const>(fluid::step_measures)})
+    for (const char* c : columns) a.writes.push_back(col(fluid::step_table, c));
   a.reads = coupling_reads_;
   return a;
 }
@@ -42,26 +45,27 @@ void FluidStepSystem::publish() {
   // u^{n-1} of the next step's extrapolated start (FluidSettings::picard_extrapolate): run state.
   const auto u_prev = solver_.previous_velocity();
   std::copy(u_prev.begin(), u_prev.end(), nodes.span<double>("previous_velocity").begin());
-  store_.table(fluid::step_table).span<double>("has_previous")[0] = solver_.has_previous() ? 1.0 : 0.0;
+  store_.table(fluid::step_table).span<uint8_t>("has_previous")[0] = solver_.has_previous() ? 1 : 0;
   Table& tets = store_.table(fluid::tet_table);
   std::copy(c.begin(), c.end(), tets.span<double>("pressure_matrix_coefficient").begin());
   const auto sub = solver_.pressure_subscale();
   std::copy(sub.begin(), sub.end(), tets.span<double>("pressure_subscale").begin());
   Table& step = store_.table(fluid::step_table);
   const fluid::FluidStepReport& r = last_;
-  const double values[] = {static_cast<double>(r.picard_iterations),
-                           r.converged ? 1.0 : 0.0,
-                           static_cast<double>(r.velocity_iterations),
-                           static_cast<double>(r.schur_iterations),
-                           static_cast<double>(r.pressure_iterations),
-                           static_cast<double>(r.amg_setups),
-                           r.velocity_change,
-                           r.pressure_change,
-                           r.divergence_l2,
-                           r.divergence_max,
-                           r.cfl};
-  for (size_t i = 0; i < std::size(values); ++i) step.span<double>(fluid::step_columns[i])[0] = values[i];
-  if (!r.converged) step.span<double>("picard_failures")[0] += 1.0;
+  auto count = [&](const char* c) -> int64_t& { return step.span<int64_t>(c)[0]; };
+  auto measure = [&](const char* c) -> double& { return step.span<double>(c)[0]; };
+  count("picard_iterations") = r.picard_iterations;
+  count("velocity_iterations") = r.velocity_iterations;
+  count("schur_iterations") = r.schur_iterations;
+  count("pressure_iterations") = r.pressure_iterations;
+  count("amg_setups") = r.amg_setups;
+  step.span<uint8_t>("converged")[0] = r.converged ? 1 : 0;
+  measure("velocity_change") = r.velocity_change;
+  measure("pressure_change") = r.pressure_change;
+  measure("divergence_l2") = r.divergence_l2;
+  measure("divergence_max") = r.divergence_max;
+  measure("cfl") = r.cfl;
+  if (!r.converged) count("picard_failures") += 1;
   double& max_cfl = step.span<double>("max_cfl")[0];
   double& max_div = step.span<double>("max_divergence")[0];
   max_cfl = std::max(max_cfl, r.cfl);
@@ -71,13 +75,14 @@ void FluidStepSystem::publish() {
 void FluidStepSystem::restore_report() {
   const Table& step = store_.table(fluid::step_table);
   auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
+  auto n = [&](const char* c) { return static_cast<int>(step.span<const int64_t>(c)[0]); };
   fluid::FluidStepReport& r = last_;
-  r.picard_iterations = static_cast<int>(v("picard_iterations"));
-  r.converged = v("converged") != 0.0;
-  r.velocity_iterations = static_cast<int>(v("velocity_iterations"));
-  r.schur_iterations = static_cast<int>(v("schur_iterations"));
-  r.pressure_iterations = static_cast<int>(v("pressure_iterations"));
-  r.amg_setups = static_cast<int>(v("amg_setups"));
+  r.picard_iterations = n("picard_iterations");
+  r.converged = step.span<const uint8_t>("converged")[0] != 0;
+  r.velocity_iterations = n("velocity_iterations");
+  r.schur_iterations = n("schur_iterations");
+  r.pressure_iterations = n("pressure_iterations");
+  r.amg_setups = n("amg_setups");
   r.velocity_change = v("velocity_change");
   r.pressure_change = v("pressure_change");
   r.divergence_l2 = v("divergence_l2");

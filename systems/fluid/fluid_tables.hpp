@@ -7,11 +7,12 @@
 // fluid_tet: nodes (i32 x4), pressure_matrix_coefficient (1): what the pressure preconditioner was last
 //            assembled with (part of the state a step depends on; see FluidSolver::restore_state);
 //            pressure_subscale (3): the dynamic pressure subscale u' (kernels/fluid_subscale.hpp), state
-// fluid_step: one row, the last step's report: picard_iterations, converged (1/0), velocity_iterations,
-//            schur_iterations, pressure_iterations, amg_setups, velocity_change, pressure_change,
-//            divergence_l2, divergence_max, cfl; and running figures over the run: picard_failures, max_cfl,
-//            max_divergence; has_previous (1/0: previous_velocity is valid); with fluid.adapt, remeshes (the
-//            mesh's revision: how many times it was remade)
+// fluid_step: one row, the last step's report: the counts (i64) picard_iterations, velocity_iterations,
+//            schur_iterations, pressure_iterations, amg_setups; converged (u8, 1/0); the measures (f64)
+//            velocity_change, pressure_change, divergence_l2, divergence_max, cfl. Running figures over the
+//            run: picard_failures (i64), max_cfl, max_divergence (f64); has_previous (u8, 1/0:
+//            previous_velocity is valid); with fluid.adapt, remeshes (i64: the mesh's revision, how many
+//            times it was remade)
 // fluid_boundary (fluid.adapt only): nodes (i32 x3), surface (i32, index into the mesh's surface names):
 //            the boundary triangles, so a restart rebuilds the solver on the mesh the store holds
 #include <string>
@@ -23,20 +24,14 @@ inline constexpr const char* tet_table = "fluid_tet";
 inline constexpr const char* step_table = "fluid_step";
 inline constexpr const char* boundary_table = "fluid_boundary";
 
-inline constexpr const char* step_columns[] = {"picard_iterations",
-                                               "converged",
-                                               "velocity_iterations",
-                                               "schur_iterations",
-                                               "pressure_iterations",
-                                               "amg_setups",
-                                               "velocity_change",
-                                               "pressure_change",
-                                               "divergence_l2",
-                                               "divergence_max",
-                                               "cfl",
-                                               "picard_failures",
-                                               "max_cfl",
-                                               "max_divergence"};
+// fluid_step's columns by type (the fluid step writes them all).
+inline constexpr const char* step_counts[] = {"picard_iterations", "velocity_iterations",
+                                              "schur_iterations",  "pressure_iterations",
+                                              "amg_setups",        "picard_failures"};
+inline constexpr const char* step_flags[] = {"converged", "has_previous"};
+inline constexpr const char* step_measures[] = {
+    "velocity_change", "pressure_change", "divergence_l2", "divergence_max", "cfl",
+    "max_cfl",         "max_divergence"};
 
 inline std::string col(const char* table, const char* column) {
   return std::string(table) + "." + column;

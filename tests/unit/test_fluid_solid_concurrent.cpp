@@ -54,8 +54,8 @@ TEST(FluidSolidConcurrent, ANeutrallyBuoyantBlockStaysAtRest) {
   double speed = 0.0;
   for (double v : store.table(solid::node_table).span<double>("v")) speed = std::max(speed, std::abs(v));
   EXPECT_LT(speed, 1e-9);
-  EXPECT_GT(store.table(coupling::state_table).span<double>("exchanges")[0], 3.0);
-  EXPECT_EQ(store.table(coupling::state_table).span<double>("fluid_ahead")[0], 0.0);
+  EXPECT_GT(store.table(coupling::state_table).span<int64_t>("exchanges")[0], 3);
+  EXPECT_EQ(store.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0], 0);
 }
 
 // Bitwise: which thread runs the fluid task, and what the solid does meanwhile, must not matter.

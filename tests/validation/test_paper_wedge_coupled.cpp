@@ -61,8 +61,8 @@ TEST(PaperWedgeCoupled, TheNetworkTakesTheSurroundingFluidsPressureAndItsMass) {
   const Scene scene = coarse_wedge("2.5e-5");
   const double fluid_dt = scene.fluid->dt;
   size_t windows = 0, held_steps = 0, mass_mismatches = 0;
-  double remeshes_before = 0.0, worst_sink_error = 0.0, worst_well_gap = 0.0, worst_inlet_gap = 0.0,
-         sink_before = 0.0, intake = 0.0;
+  int64_t remeshes_before = 0;
+  double worst_sink_error = 0.0, worst_well_gap = 0.0, worst_inlet_gap = 0.0, sink_before = 0.0, intake = 0.0;
   const RunResult r = run_watching(scene, 2, [&](Simulation& sim) {
     std::vector<std::pair<std::string, double>> row, flow;
     coupling_of(sim).metrics(sim.time(), row);
@@ -87,7 +87,7 @@ TEST(PaperWedgeCoupled, TheNetworkTakesTheSurroundingFluidsPressureAndItsMass) {
     }
     // A remesh after the window (fluid.adapt) hands the new mesh the solid's state again, with no intake
     // left for the next window: the sink the step took is then no longer in the solver to read.
-    const double remeshes = sim.world().store.table(fluid::step_table).span<const double>("remeshes")[0];
+    const auto remeshes = sim.world().store.table(fluid::step_table).span<const int64_t>("remeshes")[0];
     const bool remeshed = remeshes != remeshes_before;
     remeshes_before = remeshes;
     if (remeshed) {

@@ -138,10 +138,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   }
   const int m = std::max(settings_.schur_restart, 1);
   settings_.schur_restart = m;
-  krylov_v_.assign(static_cast<size_t>(m + 1) * nn, 0.0);
-  krylov_z_.assign(static_cast<size_t>(m) * nn, 0.0);
-  hess_.assign(static_cast<size_t>(m + 1) * m, 0.0);
-  for (auto* v : {&g_, &cs_, &sn_, &y_}) v->assign(static_cast<size_t>(m) + 1, 0.0);
+  fgmres_.resize(nn, m);
   u_v_.assign(3 * nn, 0.0);
   xi_v_.assign(3 * nn, 0.0);
   grad_v_.assign(3 * nn, 0.0);
@@ -342,88 +339,22 @@ void FluidSolver::schur_precondition(std::span<const double> r, std::span<double
     for (size_t n = 0; n < nn; ++n) z[n] -= mean / static_cast<double>(nn);
 }
 
-// Right-preconditioned flexible GMRES(m) (Saad 1993) on S delta = b, delta = 0 on entry.
+// S delta = b by flexible GMRES (engine/linear/fgmres.hpp), delta = 0 on entry.
 FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std::span<double> delta) {
-  const size_t nn = node_count();
-  const int m = settings_.schur_restart;
   SchurStats st;
-  const auto dot = [nn](const double* a, const double* c) {
-    double s = 0.0;
-    for (size_t i = 0; i < nn; ++i) s += a[i] * c[i];
-    return s;
-  };
-  double beta = std::sqrt(dot(b.data(), b.data()));
+  double beta = 0.0;
+  for (double v : b) beta += v * v;
+  beta = std::sqrt(beta);
   // Relative to the largest initial residual of this step, so a Picard iterate that is already converged
   // costs no iterations.
   schur_reference_ = std::max(schur_reference_, beta);
-  const double target = std::max({settings_.schur_rel_tol * schur_reference_, schur_floor_, 1e-300});
-  st.residual = beta;
-  st.target = target;
-  st.converged = beta <= target;
-  if (st.converged) return st;
-  std::copy(b.begin(), b.end(), krylov_v_.begin());  // r = b - S*0
-  while (st.iterations < settings_.schur_max_iterations) {
-    double* v0 = krylov_v_.data();
-    for (size_t i = 0; i < nn; ++i) v0[i] /= beta;
-    std::fill(g_.begin(), g_.end(), 0.0);
-    g_[0] = beta;
-    int j = 0;
-    for (; j < m && st.iterations < settings_.schur_max_iterations; ++j) {
-      ++st.iterations;
-      double* vj = krylov_v_.data() + j * nn;
-      double* zj = krylov_z_.data() + j * nn;
-      double* w = krylov_v_.data() + (j + 1) * nn;
-      schur_precondition({vj, nn}, {zj, nn}, st);
-      schur_apply({zj, nn}, {w, nn}, st);
-      for (int i = 0; i <= j; ++i) {
-        const double* vi = krylov_v_.data() + i * nn;
-        const double hij = dot(w, vi);
-        hess_[i * m + j] = hij;
-        for (size_t q = 0; q < nn; ++q) w[q] -= hij * vi[q];
-      }
-      const double hn = std::sqrt(dot(w, w));
-      hess_[(j + 1) * m + j] = hn;
-      if (hn > 0.0)
-        for (size_t q = 0; q < nn; ++q) w[q] /= hn;
-      // Givens rotations.
-      for (int i = 0; i < j; ++i) {
-        const double a = hess_[i * m + j], c = hess_[(i + 1) * m + j];
-        hess_[i * m + j] = cs_[i] * a + sn_[i] * c;
-        hess_[(i + 1) * m + j] = -sn_[i] * a + cs_[i] * c;
-      }
-      const double a = hess_[j * m + j], c = hess_[(j + 1) * m + j];
-      const double r = std::hypot(a, c);
-      cs_[j] = r > 0.0 ? a / r : 1.0;
-      sn_[j] = r > 0.0 ? c / r : 0.0;
-      hess_[j * m + j] = r;
-      hess_[(j + 1) * m + j] = 0.0;
-      g_[j + 1] = -sn_[j] * g_[j];
-      g_[j] = cs_[j] * g_[j];
-      st.residual = std::abs(g_[j + 1]);
-      if (st.residual <= target || hn == 0.0) {
-        ++j;
-        break;
-      }
-    }
-    // delta += Z y, H y = g (upper triangular j x j).
-    for (int i = j - 1; i >= 0; --i) {
-      double sum = g_[i];
-      for (int k = i + 1; k < j; ++k) sum -= hess_[i * m + k] * y_[k];
-      y_[i] = sum / hess_[i * m + i];
-    }
-    for (int i = 0; i < j; ++i) {
-      const double* zi = krylov_z_.data() + i * nn;
-      for (size_t q = 0; q < nn; ++q) delta[q] += y_[i] * zi[q];
-    }
-    if (st.residual <= target) break;
-    // Restart: r = b - S delta.
-    schur_apply(delta, {krylov_v_.data(), nn}, st);
-    for (size_t q = 0; q < nn; ++q) krylov_v_[q] = b[q] - krylov_v_[q];
-    beta = std::sqrt(dot(krylov_v_.data(), krylov_v_.data()));
-    st.residual = beta;
-    if (beta <= target) break;
-  }
-  st.converged = st.residual <= target;
+  st.target = std::max({settings_.schur_rel_tol * schur_reference_, schur_floor_, 1e-300});
+  const KrylovResult r = fgmres_.solve([&](auto v, auto w) { schur_apply(v, w, st); },
+                                       [&](auto v, auto z) { schur_precondition(v, z, st); }, b, delta,
+                                       st.target, settings_.schur_max_iterations);
+  st.iterations = r.iterations;
+  st.residual = r.residual;
+  st.converged = r.converged;
   return st;
 }
 

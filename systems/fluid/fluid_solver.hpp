@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "engine/linear/csr_matrix.hpp"
+#include "engine/linear/fgmres.hpp"
 #include "engine/linear/hypre_pcg.hpp"
 #include "engine/linear/krylov.hpp"
 #include "engine/mesh/tet_mesh.hpp"
@@ -236,7 +237,8 @@ class FluidSolver {
   CsrMatrix momentum_, pressure_mat_;
   std::array<CsrMatrix, 3> comp_;         // momentum with the Dirichlet rows of each component
   std::array<bool, 3> comp_all_fixed_{};  // every node's component fixed (e.g. w in a free-slip slab)
-  std::vector<double> krylov_v_, krylov_z_, hess_, g_, cs_, sn_, y_, u_v_, xi_v_, grad_v_, prec_rhs_;
+  Fgmres fgmres_;                         // the Schur complement's solver and its workspace
+  std::vector<double> u_v_, xi_v_, grad_v_, prec_rhs_;
   std::vector<int32_t> slot_, diag_slot_;
   FluidAssembly assembly_;  // the parallel element loops (momentum, pressure matrix, rhs, gradients)
   std::vector<double> rhs_, rhs_c_, x_c_, prhs_, cont_res_, phi_, corr_;

@@ -47,6 +47,7 @@ RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
+  if (options_.check_access) graph_->check_access_against(&world_->store);
   check_background_access();
   choose_dt();
   if (options_.write_output && !options_.restart_latest) refuse_or_clear_earlier_run();
@@ -118,7 +119,9 @@ RunLoop::~RunLoop() {
 void RunLoop::check_background_access() {
   for (const auto& m : world_->models) {
     const Access background = m->background_access();
-    if (background.reads.empty() && background.writes.empty() && !background.changes_topology) continue;
+    if (background.reads.empty() && background.writes.empty() && background.resizes.empty() &&
+        !background.changes_topology)
+      continue;
     has_background_ = true;
     for (System* s : world_->systems()) {
       const std::string column = access_conflict(background, s->access());

@@ -28,6 +28,11 @@ struct RunOptions {
   // A folder that already holds a run is refused (continue it with restart_latest); overwrite deletes that
   // run's files (Rift's own names only) first.
   bool overwrite = false;
+  // Run every step's systems one after another and stop at the first that changes a column it did not
+  // declare among its writes, or a table's rows it did not declare among its resizes
+  // (engine/schedule/access_check.hpp).
+  // For tests: slow.
+  bool check_access = false;
 };
 
 struct RunResult {

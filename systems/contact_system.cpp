@@ -288,9 +288,9 @@ Access ContactSystem::access() const {
                                   col(solid::energy_table, "contact_damping"),
                                   col(solid::contact_state_table, "detections")};
   if (store_.has(solid::joint_table)) writes.push_back(col(solid::joint_table, "in_contact"));
-  // Resizes only its own pair table, which no other system touches: declared as writes, not as a topology
-  // change (that would serialise the whole step).
-  return {reads, writes};
+  // Resizes only its own pair table, which no other system touches: a declared resize, not a topology change
+  // (that would serialise the whole step).
+  return {reads, writes, {P}};
 }
 
 void ContactSystem::run(const StepContext& ctx) {

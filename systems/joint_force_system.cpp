@@ -39,7 +39,7 @@ Access JointForceSystem::access() const {
   if (store_.table(J).has("residual_anchor")) writes.push_back(col(J, "residual_anchor"));
   return {{col(solid::node_table, "x"), col(J, "nodes"), col(J, "material"), col(J, "initial_offset")},
           writes,
-          /*changes_topology=*/false};
+          {V}};  // a break appends its row to the fracture log
 }
 
 void JointForceSystem::run(const StepContext& ctx) {

@@ -12,7 +12,7 @@ MeshConversionSystem::MeshConversionSystem(Store& store, MeshConversion& convers
 
 Access MeshConversionSystem::access() const {
   using solid::col;
-  return {{col(solid::event_table, "joint"), col(solid::event_table, "time")}, {conversion_key}, false};
+  return {{col(solid::event_table, "joint"), col(solid::event_table, "time")}, {conversion_key}};
 }
 
 void MeshConversionSystem::catch_up() {

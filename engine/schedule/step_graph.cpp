@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
+#include "engine/schedule/access_check.hpp"
 
 namespace rift {
 
@@ -19,12 +20,25 @@ std::mutex trace_mutex;
 
 }  // namespace
 
+// The first column of `a` (reads or writes) in `table`, or "".
+static std::string column_of(const Access& a, const std::string& table) {
+  const std::string prefix = table + ".";
+  for (const auto* list : {&a.reads, &a.writes})
+    for (const auto& c : *list)
+      if (c.rfind(prefix, 0) == 0) return c;
+  return "";
+}
+
 std::string access_conflict(const Access& earlier, const Access& later) {
   if (earlier.changes_topology || later.changes_topology) return "topology";
   for (const auto& w : earlier.writes)
     if (contains(later.reads, w) || contains(later.writes, w)) return w;
   for (const auto& w : later.writes)
     if (contains(earlier.reads, w)) return w;
+  // A table's rows change under everything that uses any of its columns.
+  for (const auto& [one, other] : {std::pair{&earlier, &later}, std::pair{&later, &earlier}})
+    for (const auto& t : one->resizes)
+      if (contains(other->resizes, t) || !column_of(*other, t).empty()) return t + " (rows)";
   return "";
 }
 
@@ -95,6 +109,7 @@ void StepGraph::build_flow_graph() {
 }
 
 void StepGraph::run_step(const StepContext& ctx) {
+  if (checked_store_) return run_checked(ctx);
   current_ = &ctx;
   // Isolated: while it waits for the step, this thread runs only the step's own tasks, never a task a
   // model left running beside the graph (Model::before_step). Otherwise it could pick up a whole
@@ -106,6 +121,20 @@ void StepGraph::run_step(const StepContext& ctx) {
     });
   });
   current_ = nullptr;
+}
+
+void StepGraph::run_checked(const StepContext& ctx) {
+  arena_.execute([&] {
+    for (size_t i = 0; i < systems_.size(); ++i) {
+      const StoreFingerprint before = fingerprint(*checked_store_);
+      systems_[i]->run(ctx);
+      timings_[i].calls += 1;
+      const std::string report = undeclared_changes(*checked_store_, before, access_[i], systems_[i]->name());
+      if (!report.empty())
+        throw Error("step " + std::to_string(ctx.step) + ": a system changed what it did not declare " +
+                    "(its access() is what the step graph orders it by):\n" + report);
+    }
+  });
 }
 
 std::string StepGraph::dot() const {

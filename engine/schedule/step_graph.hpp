@@ -3,8 +3,9 @@
 //
 // Systems are listed in the order the step would run them one after another (the "script" order).
 // System j depends on an earlier system i when j reads a column i writes (read after write), writes a
-// column i reads (write after read) or writes a column i also writes (write after write); a system
-// that changes topology is ordered against every other system. Everything else may run concurrently.
+// column i reads (write after read) or writes a column i also writes (write after write), or when one
+// resizes a table whose columns the other uses; a system that changes topology is ordered against every
+// other system. Everything else may run concurrently.
 // Redundant edges (implied through another path) are dropped. The graph is built once per run and
 // triggered once per step; each node records its wall time.
 #include <tbb/flow_graph.h>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/table.hpp"
 #include "engine/schedule/system.hpp"
 
 namespace rift {
@@ -43,11 +45,16 @@ class StepGraph {
   std::string dot() const;  // Graphviz: one box per system, edges labelled with the column that orders them
 
   void set_tracing(bool on) { tracing_ = on; }
+  // Checking mode (engine/schedule/access_check.hpp): each step runs the systems one after another in
+  // script order and stops with rift::Error, naming system and column, when one changed a column it did
+  // not declare among its writes or a table's rows it did not declare among its resizes. For tests; slow.
+  void check_access_against(const Store* store) { checked_store_ = store; }
   const std::vector<SystemInterval>& intervals() const { return intervals_; }
 
  private:
   void derive_edges();
   void build_flow_graph();
+  void run_checked(const StepContext& ctx);
 
   std::vector<System*> systems_;
   std::vector<Access> access_;
@@ -60,6 +67,7 @@ class StepGraph {
   std::unique_ptr<tbb::flow::broadcast_node<tbb::flow::continue_msg>> start_;
   std::vector<std::unique_ptr<tbb::flow::continue_node<tbb::flow::continue_msg>>> nodes_;
   const StepContext* current_ = nullptr;
+  const Store* checked_store_ = nullptr;
   bool tracing_ = false;
   std::vector<SystemInterval> intervals_;
   std::chrono::steady_clock::time_point epoch_;

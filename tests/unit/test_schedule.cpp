@@ -56,12 +56,24 @@ TEST(StepGraph, EdgesFollowReadWriteConflictsAndAreReduced) {
 
 TEST(StepGraph, TopologyChangeSerialisesEverything) {
   FakeSystem a("a", {{"x.a"}, {"x.b"}});
-  Access topo{{}, {"joint.state"}, true};
+  Access topo{{}, {"joint.state"}, {}, true};
   FakeSystem b("failure", topo);
   FakeSystem c("c", {{"y.a"}, {"y.b"}});
   StepGraph g({&a, &b, &c}, 2);
   EXPECT_TRUE(has_edge(g, 0, 1));
   EXPECT_TRUE(has_edge(g, 1, 2));
+}
+
+TEST(StepGraph, AResizeOrdersOnlyTheTablesUsers) {
+  // contact resizes its pair table: ordered against the one that reads a pair column, not the others.
+  FakeSystem contact("contact", {{"node.x"}, {"node.contact_force"}, {"pair"}});
+  FakeSystem tets("tets", {{"node.x"}, {"tet.f"}});
+  FakeSystem probe("pair_probe", {{"pair.force"}, {}});
+  StepGraph g({&contact, &tets, &probe}, 2);
+  EXPECT_FALSE(has_edge(g, 0, 1));  // tets never touch the pair table: concurrent
+  EXPECT_TRUE(has_edge(g, 0, 2));
+  EXPECT_EQ(access_conflict(contact.access(), probe.access()), "pair (rows)");
+  EXPECT_EQ(access_conflict(contact.access(), tets.access()), "");
 }
 
 TEST(StepGraph, ReaderAlwaysRunsAfterWriter) {

@@ -1,5 +1,6 @@
 #include "engine/core/table.hpp"
 
+#include <atomic>
 #include <cstring>
 
 namespace rift {
@@ -73,8 +74,19 @@ Column* Table::find(std::string_view name) const {
   return nullptr;
 }
 
+namespace {
+std::atomic<ColumnLookupObserver*> lookup_observer{nullptr};
+}  // namespace
+
+void set_column_lookup_observer(ColumnLookupObserver* observer) {
+  lookup_observer.store(observer);
+}
+
 Column& Table::column(std::string_view name) {
-  if (Column* c = find(name)) return *c;
+  if (Column* c = find(name)) {
+    if (ColumnLookupObserver* o = lookup_observer.load(std::memory_order_relaxed)) o->looked_up(*c);
+    return *c;
+  }
   throw Error("table " + name_ + " has no column " + std::string(name));
 }
 const Column& Table::column(std::string_view name) const {

@@ -175,6 +175,15 @@ class Table {
   std::vector<std::unique_ptr<Column>> columns_;  // unique_ptr: column addresses survive add_column
 };
 
+// Receives every column lookup (Table::column, and so span) while it is installed: the access check
+// (engine/schedule/access_check.hpp) records what a system looks up. At most one at a time, process-wide.
+class ColumnLookupObserver {
+ public:
+  virtual ~ColumnLookupObserver() = default;
+  virtual void looked_up(const Column& column) = 0;
+};
+void set_column_lookup_observer(ColumnLookupObserver* observer);  // nullptr: none
+
 // All tables of a run. Table addresses are stable for the life of the store.
 class Store {
  public:

@@ -74,4 +74,35 @@ std::string undeclared_changes(const Store& store, const StoreFingerprint& befor
   return report;
 }
 
+LookupRecorder::LookupRecorder() {
+  set_column_lookup_observer(this);
+}
+LookupRecorder::~LookupRecorder() {
+  set_column_lookup_observer(nullptr);
+}
+
+void LookupRecorder::looked_up(const Column& column) {
+  std::lock_guard lock(mutex_);
+  keys_.insert(column.key());
+}
+
+std::vector<std::string> LookupRecorder::keys() const {
+  std::lock_guard lock(mutex_);
+  return {keys_.begin(), keys_.end()};
+}
+
+std::string undeclared_lookups(const std::vector<std::string>& looked_up, const Access& access,
+                               const std::string& system) {
+  const auto named = [&](const std::string& key) {
+    for (const auto* list : {&access.reads, &access.writes})
+      if (std::find(list->begin(), list->end(), key) != list->end()) return true;
+    return false;
+  };
+  std::string report;
+  for (const auto& key : looked_up)
+    if (!named(key) && !access.changes_topology)
+      report += "  " + system + " looked up " + key + " without declaring it among its reads\n";
+  return report;
+}
+
 }  // namespace rift

@@ -5,9 +5,13 @@
 // declarations, so a write that is not declared is a data race waiting for the thread count that exposes it.
 //
 // How: a fingerprint of the store (rows per table, a hash of every column's bytes) before and after the
-// system runs. It finds writes by their effect, wherever the system got its spans (at set-up or in run),
-// and it does not see reads (a read leaves no trace) or a write that leaves the same bytes.
+// system runs finds writes by their effect, wherever the system got its spans (at set-up or in run); it
+// does not see a write that leaves the same bytes. Reads: every column the system looks up while it runs
+// (ColumnLookupObserver, engine/core/table.hpp) must be among its reads or writes; a span it took at
+// set-up and reads later is not seen.
 #include <cstdint>
+#include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -29,6 +33,23 @@ StoreFingerprint fingerprint(const Store& store);
 // What `system` changed between `before` and now without declaring it: "" when nothing; else one line per
 // column or table, with what to declare.
 std::string undeclared_changes(const Store& store, const StoreFingerprint& before, const Access& access,
+                               const std::string& system);
+
+// Collects the keys of the columns looked up while installed (one at a time, process-wide).
+class LookupRecorder : public ColumnLookupObserver {
+ public:
+  LookupRecorder();
+  ~LookupRecorder() override;
+  void looked_up(const Column& column) override;
+  std::vector<std::string> keys() const;  // sorted, once each
+
+ private:
+  mutable std::mutex mutex_;
+  std::set<std::string> keys_;
+};
+
+// The columns `system` looked up that its access does not name (reads or writes): "" when none.
+std::string undeclared_lookups(const std::vector<std::string>& looked_up, const Access& access,
                                const std::string& system);
 
 }  // namespace rift

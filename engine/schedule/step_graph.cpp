@@ -127,11 +127,18 @@ void StepGraph::run_checked(const StepContext& ctx) {
   arena_.execute([&] {
     for (size_t i = 0; i < systems_.size(); ++i) {
       const StoreFingerprint before = fingerprint(*checked_store_);
-      systems_[i]->run(ctx);
+      std::vector<std::string> looked_up;
+      {
+        LookupRecorder recorder;
+        systems_[i]->run(ctx);
+        looked_up = recorder.keys();
+      }
       timings_[i].calls += 1;
-      const std::string report = undeclared_changes(*checked_store_, before, access_[i], systems_[i]->name());
+      const std::string report =
+          undeclared_changes(*checked_store_, before, access_[i], systems_[i]->name()) +
+          undeclared_lookups(looked_up, access_[i], systems_[i]->name());
       if (!report.empty())
-        throw Error("step " + std::to_string(ctx.step) + ": a system changed what it did not declare " +
+        throw Error("step " + std::to_string(ctx.step) + ": a system used what it did not declare " +
                     "(its access() is what the step graph orders it by):\n" + report);
     }
   });

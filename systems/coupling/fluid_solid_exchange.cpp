@@ -377,21 +377,22 @@ Access FluidToSolidSystem::access() const {
   const char* F = fluid::tet_table;
   const char* S = coupling::state_table;
   Access a{{fluid::col(fluid::node_table, "velocity"), fluid::col(F, "solid_velocity"),
-            fluid::col(F, "velocity_before"), fluid::col(F, "absorption"), col(solid::tet_table, "nodes")},
+            fluid::col(F, "velocity_before"), fluid::col(F, "absorption"), fluid::col(F, "nodes"),
+            col(solid::tet_table, "nodes")},
            {col(solid::node_table, "fluid_force"), col(S, "exchanges"), col(S, "penalty_scale"),
             col(S, "force"), col(S, "penalty"), col(S, "absorption"), col(S, "previous_force"),
             col(S, "previous_change"), col(S, "growing")}};
   if (settings_.oscillation_lag == 2) a.writes.push_back(col(S, "older_change"));
-  if (!pairs_.wet_faces.empty()) {
-    a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
+  if (!pairs_.wet_faces.empty() || !settings_.volume_force) {  // sampled, or their total push reported
     a.reads.push_back(col(solid::node_table, "x"));
     a.reads.push_back(col(solid::face_table, "nodes"));
-    a.writes.push_back(col(solid::face_table, "fluid_pressure"));
   }
-  if (settings_.network_inlet) {
+  if (!pairs_.wet_faces.empty() || settings_.network_inlet) {  // the fluid's pressure at points
+    a.reads.push_back(fluid::col(fluid::node_table, "x"));
     a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
-    a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
   }
+  if (!pairs_.wet_faces.empty()) a.writes.push_back(col(solid::face_table, "fluid_pressure"));
+  if (settings_.network_inlet) a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
   if (settings_.added_mass > 0.0) {
     a.reads.push_back(col(solid::node_table, "v"));
     a.reads.push_back(col(solid::node_table, "fluid_added_mass"));

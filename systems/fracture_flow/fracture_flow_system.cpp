@@ -108,11 +108,12 @@ void FractureFlowSystem::add_well_wall() {
 Access FractureFlowSystem::access() const {
   using solid::col;
   const char* N = solid::node_table;
-  std::vector<std::string> reads{col(N, "inv_mass"), col(N, "free"), col(solid::joint_table, "nodes"),
-                                 col(solid::event_table, "joint")};
+  std::vector<std::string> reads{col(N, "inv_mass"), col(N, "free"), col(N, "vertex"),
+                                 col(solid::joint_table, "nodes"), col(solid::event_table, "joint")};
   if (spec_.wet_damage < 1.0) reads.push_back(col(solid::joint_table, "d_max"));
   if (well_is_wall()) reads.push_back(col(N, "x0"));
   if (spec_.pressure_from_fluid) reads.push_back(col(books_table, "inlet_pressure"));
+  reads.push_back(col(books_table, "initial_mass"));
   std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "crack_force"),
                                   col(solid::energy_table, "external_work")};
   for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})

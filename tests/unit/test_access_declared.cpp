@@ -45,6 +45,10 @@ TEST(AccessDeclared, SolidScenes) {
            {"validation/contact_collision.yaml", {}, 200, "solid_contact_pair"},
            {"validation/sneddon_plane_strain.yaml", {}, 50},
            {"examples/brazilian_disc.yaml", {"mesh.generate.size_max=0.008"}, 100},
+           {"validation/contact_incline.yaml", {}, 200, "solid_contact_pair"},
+           {"validation/contact_cut_column.yaml", {}, 100},
+           {"validation/notch_pressure_ramp.yaml", {}, 100},
+           {"validation/in_situ_block.yaml", {}, 50},
        })
     run_checked(c);
 }
@@ -54,6 +58,8 @@ TEST(AccessDeclared, FractureFlowScenes) {
            {"validation/sneddon_injection.yaml", {}, 100},
            {"validation/vent_slot.yaml", {}, 100},
            {"examples/hydraulic_fracture.yaml", {}, 200},
+           {"validation/borehole_breakdown.yaml", {}, 100},
+           {"validation/kgd_toughness.yaml", {}, 100},
        })
     run_checked(c);
 }
@@ -61,6 +67,8 @@ TEST(AccessDeclared, FractureFlowScenes) {
 TEST(AccessDeclared, FluidScenes) {
   for (const Case& c : std::vector<Case>{
            {"examples/cavity.yaml", {}, 5},
+           {"validation/hydrostatic_box.yaml", {}, 5},
+           {"validation/poiseuille.yaml", {}, 5},
            {"validation/immersed_block.yaml", {}, 60},
            {"validation/immersed_block_adaptive.yaml", {}, 60},
            // The paper's wedge, coupled, with the network's inlet and the adaptive fluid mesh: two windows.

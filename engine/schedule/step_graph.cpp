@@ -18,16 +18,16 @@ bool contains(const std::vector<std::string>& list, const std::string& key) {
 
 std::mutex trace_mutex;
 
-}  // namespace
-
 // The first column of `a` (reads or writes) in `table`, or "".
-static std::string column_of(const Access& a, const std::string& table) {
+std::string column_of(const Access& a, const std::string& table) {
   const std::string prefix = table + ".";
   for (const auto* list : {&a.reads, &a.writes})
     for (const auto& c : *list)
       if (c.rfind(prefix, 0) == 0) return c;
   return "";
 }
+
+}  // namespace
 
 std::string access_conflict(const Access& earlier, const Access& later) {
   if (earlier.changes_topology || later.changes_topology) return "topology";

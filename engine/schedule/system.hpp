@@ -11,9 +11,9 @@ namespace rift {
 
 struct Access {
   std::vector<std::string> reads;
-  std::vector<std::string> writes;   // a written column counts as read too
-  std::vector<std::string> resizes;  // tables whose rows it adds or removes (every column of them changes)
-  bool changes_topology = false;     // may change anything: ordered against every other system
+  std::vector<std::string> writes;     // a written column counts as read too
+  std::vector<std::string> resizes{};  // tables whose rows it adds or removes (every column of them changes)
+  bool changes_topology = false;       // may change anything: ordered against every other system
 };
 
 // Wall time of one system (or of work a model runs beside the graph), for the timing table and summary.

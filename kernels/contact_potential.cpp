@@ -362,7 +362,7 @@ ContactStatus contact_forces(const ContactArgs& args, size_t begin, size_t end) 
         if (friction) {
           double du[3];
           for (int d = 0; d < 3; ++d) du[d] = vrel[d] * args.dt;
-          const FrictionStep fs = coulomb_friction_update(&args.history[3 * q], n, fn + fd, du,
+          const FrictionStep fs = coulomb_friction_update(&args.history[3 * q], n, fn, du,
                                                           law.tangential_stiffness, law.friction);
           for (int d = 0; d < 3; ++d) extra[d] += fs.force[d];
           fric_diss = fs.dissipation;

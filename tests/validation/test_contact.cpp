@@ -123,16 +123,20 @@ TEST(ContactValidation, BlockSticksBelowTheFrictionAngle) {
 // The incline over angles, friction coefficients and meshes: the corners of the study in
 // bench/contact_incline_study.py (docs/validation.md has the whole grid) and the cases that a damping
 // not proportional to each pair's stiffness gets wrong (45 and 60 degrees at mu = 0.8 on 2 and 4 cells:
-// 5 - 8 % fast, or stopped by the contact guard). Sliding: the acceleration within 2 % of g (sin - mu cos)
-// (the bound; friction is mu N at every instant of a slide, so only the time average of N enters).
-// Sticking: the drift of the centre, its mean over the last 10 ms less that over 40 - 50 ms (means, so
-// that the elastic ringing left from the drop does not count), below 1e-6 of the block (20 nm). Both: contact
-// never puts energy in, its stored energy (work done on the contact less friction and damping) staying above
-// -1e-3 of the friction dissipation (the central difference's O(dt) share of that work).
+// 5 - 8 % fast, or stopped by the contact guard), and 45 degrees / mu 0.8 on 4 cells, near tipping, which
+// a friction cap that included the dashpot's force put off by -2 to +6 % as the step changed (+3.9 % at
+// time.safety 0.25, the case here, by this fit; the study reads +0.6 % with the cap on the potential's normal
+// force). Sliding: the acceleration within 2 % of g (sin - mu cos) (the bound; friction is mu N at
+// every instant of a slide, so only the time average of N enters). Sticking: the drift of the centre, its
+// mean over the last 10 ms less that over 40 - 50 ms (means, so that the elastic ringing left from the drop
+// does not count), below 1e-6 of the block (20 nm). Both: contact never puts energy in, its stored energy
+// (work done on the contact less friction and damping) staying above -1e-3 of the friction dissipation (the
+// central difference's O(dt) share of that work).
 struct InclineCase {
   double theta_deg, mu;
-  int n;              // cells per side, or the block's edge over the element size
-  bool unstructured;  // CGAL Mesh_3 block instead of the Kuhn lattice
+  int n;                // cells per side, or the block's edge over the element size
+  bool unstructured;    // CGAL Mesh_3 block instead of the Kuhn lattice
+  double safety = 0.5;  // time.safety (the scene's 0.5)
 };
 
 class InclineGrid : public testing::TestWithParam<InclineCase> {};
@@ -142,7 +146,8 @@ TEST_P(InclineGrid, SlidesAtGSinMinusMuCosOrSticks) {
   const double g = 9.81, theta = c.theta_deg * M_PI / 180.0, block_edge = 0.02;
   std::vector<std::string> sets = {"solid.gravity=[" + std::to_string(g * std::sin(theta)) + ", 0, " +
                                        std::to_string(-g * std::cos(theta)) + "]",
-                                   "solid.contact.friction=" + std::to_string(c.mu)};
+                                   "solid.contact.friction=" + std::to_string(c.mu),
+                                   "time.safety=" + std::to_string(c.safety)};
   const std::string n = std::to_string(c.n);
   sets.push_back(c.unstructured
                      ? "mesh.generate.blocks[1]={name: block, origin: [-0.01, -0.01, 0.0], size: [0.02, "
@@ -186,12 +191,16 @@ INSTANTIATE_TEST_SUITE_P(ContactValidation, InclineGrid,
                          testing::Values(InclineCase{5, 0.1, 1, false}, InclineCase{5, 0.8, 2, false},
                                          InclineCase{60, 0.1, 3, false}, InclineCase{60, 0.8, 4, false},
                                          InclineCase{45, 0.8, 2, false}, InclineCase{30, 0.5, 3, true},
-                                         InclineCase{20, 0.3, 2, true}, InclineCase{10, 0.8, 3, true}),
+                                         InclineCase{20, 0.3, 2, true}, InclineCase{10, 0.8, 3, true},
+                                         InclineCase{45, 0.8, 4, false, 0.25}),
                          [](const testing::TestParamInfo<InclineCase>& i) {
                            return std::to_string(static_cast<int>(i.param.theta_deg)) + "deg_mu" +
                                   std::to_string(static_cast<int>(std::lround(i.param.mu * 10))) + "_" +
                                   (i.param.unstructured ? "unstructured" : "lattice") +
-                                  std::to_string(i.param.n);
+                                  std::to_string(i.param.n) +
+                                  (i.param.safety != 0.5
+                                       ? "_safety" + std::to_string(std::lround(100 * i.param.safety))
+                                       : "");
                          });
 
 // 2. Head-on collision. Momentum: every contact force is applied with its opposite and the tets' internal

@@ -6,22 +6,25 @@
 //
 // The fine interval [fine_lo, fine_hi] (clipped to the box) is cut into round(length / size) equal cells,
 // so that its ends and every multiple of the spacing from fine_lo are nodes: a crack plane at one of them
-// is a lattice plane. Outside, the k-th cell is size * growth^k long; the last cell before an end is
-// stretched to reach it exactly when the remainder is less than half a cell, else the remainder is a cell
-// of its own. The first and last coordinates are lo and hi exactly.
+// is a lattice plane. Outside, the k-th cell is size * growth^k long, at most max_size (default: no cap,
+// for a far field that only carries the elastic response; a flow's wake needs the cap); the last cell
+// before an end is stretched to reach it exactly when the remainder is less than half a cell, else the
+// remainder is a cell of its own. The first and last coordinates are lo and hi exactly.
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace rift {
 
 // Node count along an axis, without building it (for budgets); the same count graded_axis returns.
-size_t graded_axis_nodes(double lo, double hi, double fine_lo, double fine_hi, double size, double growth);
+size_t graded_axis_nodes(double lo, double hi, double fine_lo, double fine_hi, double size, double growth,
+                         double max_size = std::numeric_limits<double>::infinity());
 
-// Requires lo < hi, fine_lo < fine_hi overlapping (lo, hi), size > 0, growth >= 1 (the scene reader
-// checks these); throws rift::Error otherwise.
+// Requires lo < hi, fine_lo < fine_hi overlapping (lo, hi), size > 0, growth >= 1, max_size >= size (the
+// scene reader checks these); throws rift::Error otherwise.
 std::vector<double> graded_axis(double lo, double hi, double fine_lo, double fine_hi, double size,
-                                double growth);
+                                double growth, double max_size = std::numeric_limits<double>::infinity());
 
 // The three axes of a box [origin, origin + extent] graded from the fine box [fine_min, fine_max], and
 // their node counts alone.

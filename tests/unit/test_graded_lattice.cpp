@@ -37,6 +37,27 @@ TEST(GradedLattice, FineCellsAreExactAndTheOthersGrowByTheRatio) {
   EXPECT_LT(x.size(), 35u);  // 20 fine cells and a dozen growing ones for 7.5 m
 }
 
+// With max_size the cells grow to it and stay there; the count still matches, the ends are exact, and
+// without it the axis is the uncapped one.
+TEST(GradedLattice, CappedCellsGrowToTheCapAndStay) {
+  const std::vector<double> x = graded_axis(0.0, 10.0, -1.0, 2.5, 0.125, 1.3, 0.5);
+  ASSERT_EQ(x.size(), graded_axis_nodes(0.0, 10.0, -1.0, 2.5, 0.125, 1.3, 0.5));
+  ASSERT_EQ(x.front(), 0.0);
+  ASSERT_EQ(x.back(), 10.0);
+  double previous = 0.125;
+  for (size_t i = 21; i + 1 < x.size(); ++i) {
+    const double h = x[i] - x[i - 1];
+    EXPECT_NEAR(h, std::min(1.3 * previous, 0.5), 1e-12) << i;
+    previous = h;
+  }
+  const double last = x.back() - x[x.size() - 2];
+  EXPECT_GE(last, 0.25);  // the rest: between half and one and a half capped cells
+  EXPECT_LE(last, 0.75);
+  EXPECT_EQ(graded_axis(0.0, 10.0, -1.0, 2.5, 0.125, 1.3),
+            graded_axis(0.0, 10.0, -1.0, 2.5, 0.125, 1.3, 1e300));
+  EXPECT_THROW(graded_axis(0.0, 10.0, -1.0, 2.5, 0.125, 1.3, 0.1), Error);  // a cap below the fine size
+}
+
 TEST(GradedLattice, TheCountIsTheBudgetsAndTheAxisIncreases) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);

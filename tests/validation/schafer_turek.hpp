@@ -12,12 +12,13 @@
 // Re = Ubar D / nu = 20. c_D = 2 F_x / (rho Ubar^2 D), c_L = 2 F_y / (rho Ubar^2 D), F per unit depth.
 //
 // As a slab: one cell thick in z with free-slip z planes, the force divided by the thickness. The fluid
-// mesh is a tensor-product lattice (structured_box_on_axes): cells of h in the square [0.14, 0.26]^2
-// around the cylinder ([0.15, 0.25]^2 and one h-multiple of margin: 0.15, 0.2 and 0.25 are lattice
-// lines for h dividing 0.01, so the pressure is read at nodes), growing by TurekOptions::growth per cell
-// outside it up to TurekOptions::max_cell. The solid is a ring 0.75 R <= r <= R through the slab's thickness
-// (the fluid inside it is enclosed by the absorbing ring and at rest), a polygon of kSides sides whose area
-// equals pi R^2 (its vertices at R / sqrt(n sin(2 pi / n) / (2 pi))): the equal-area radius is R.
+// mesh is a tensor-product lattice (engine/mesh/graded_axis.hpp with its cap, structured_box_on_axes): cells
+// of h in the square [0.14, 0.26]^2 around the cylinder ([0.15, 0.25]^2 and one h-multiple of margin: 0.15,
+// 0.2 and 0.25 are lattice lines for h dividing 0.01, so the pressure is read at nodes), growing by
+// TurekOptions::growth per cell outside it up to TurekOptions::max_cell. The solid is a ring 0.75 R <= r <= R
+// through the slab's thickness (the fluid inside it is enclosed by the absorbing ring and at rest), a polygon
+// of kSides sides whose area equals pi R^2 (its vertices at R / sqrt(n sin(2 pi / n) / (2 pi))): the
+// equal-area radius is R.
 //
 // sigma0 = 1e5 mu / R^2: the penalty's boundary layer sqrt(mu / sigma0) = R / 316 is 1/16 of the finest
 // cell (D/40). Measured at h = D/10: c_D 6.2818, 6.3135, 6.3232 at 1e4, 1e5, 1e6 mu / R^2 (differences
@@ -38,6 +39,7 @@
 #include <numbers>
 #include <vector>
 
+#include "engine/mesh/graded_axis.hpp"
 #include "engine/mesh/structured_box.hpp"
 #include "kernels/fluid_element.hpp"
 #include "systems/fluid/fluid_solver.hpp"
@@ -76,36 +78,6 @@ struct TurekResult {
   bool converged = false;  // steady (change below steady_tol) and the last step's linear solves converged
   double seconds = 0.0;
 };
-
-// Nodes along [lo, hi]: cells of h on [fine_lo, fine_hi] (a whole number of them), growing by `growth`
-// per cell outside up to max_cell; the last cell before an end takes the remainder (up to 1.5 cells).
-inline std::vector<double> capped_graded_axis(double lo, double hi, double fine_lo, double fine_hi, double h,
-                                              double growth, double max_cell) {
-  const int n = static_cast<int>(std::lround((fine_hi - fine_lo) / h));
-  std::vector<double> fine(static_cast<size_t>(n) + 1);
-  for (int i = 0; i <= n; ++i) fine[static_cast<size_t>(i)] = fine_lo + (fine_hi - fine_lo) * i / n;
-  const auto grow = [&](double from, double to) {  // the nodes strictly beyond `from`, towards `to`
-    std::vector<double> out;
-    const double sign = to > from ? 1.0 : -1.0;
-    double x = from, cell = h;
-    for (;;) {
-      cell = std::min(cell * growth, max_cell);
-      if (std::abs(to - x) <= 1.5 * cell) {
-        out.push_back(to);
-        return out;
-      }
-      x += sign * cell;
-      out.push_back(x);
-    }
-  };
-  std::vector<double> axis;
-  const std::vector<double> below = grow(fine_lo, lo);
-  axis.assign(below.rbegin(), below.rend());
-  axis.insert(axis.end(), fine.begin(), fine.end());
-  const std::vector<double> above = grow(fine_hi, hi);
-  axis.insert(axis.end(), above.begin(), above.end());
-  return axis;
-}
 
 // The ring r0 <= r <= r1 about (xc, yc), z in [z0, z1], as a polygon of `sides` sides with vertices at
 // radius r / sqrt(sides sin(2 pi / sides) / (2 pi)) (each polygon's area pi r^2) and `layers` radial
@@ -192,8 +164,8 @@ inline TurekResult run_turek_2d1(double h, const TurekOptions& opt = {}) {
   using C = TurekCase;
   const auto t0 = std::chrono::steady_clock::now();
   const double lo = C::kXc - C::kD / 2 - 0.01, hi = C::kXc + C::kD / 2 + 0.01;
-  const std::vector<double> ax = capped_graded_axis(0.0, C::kL, lo, hi, h, opt.growth, opt.max_cell);
-  const std::vector<double> ay = capped_graded_axis(0.0, C::kH, lo, hi, h, opt.growth, opt.max_cell);
+  const std::vector<double> ax = graded_axis(0.0, C::kL, lo, hi, h, opt.growth, opt.max_cell);
+  const std::vector<double> ay = graded_axis(0.0, C::kH, lo, hi, h, opt.growth, opt.max_cell);
   const TetMesh fluid_mesh = structured_box_on_axes({ax, ay, {0.0, h}});
   const int layers = std::max(1, static_cast<int>(std::lround(0.25 * C::kD / 2 / h)));
   const TetMesh solid_mesh =

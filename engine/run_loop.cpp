@@ -328,9 +328,14 @@ void RunLoop::step_once() {
   ++step_;
   hooks([&](Model& m) { m.after_step(ctx); });
   const StepContext after{step_, time(), dt_, step_ == total_steps_};
+  // Every guard that fires at this step is reported: one model's failure is often another's symptom (a
+  // fluid step that does not converge while the coupling's force oscillates and grows).
+  std::string stop;
   for (const auto& m : world_->models)
     if (auto diagnosis = m->check_health(after))
-      throw Error("run stopped by the " + m->name() + " guard: " + *diagnosis);
+      stop += (stop.empty() ? "run stopped by the " : "\nAt the same step, the ") + m->name() +
+              " guard: " + *diagnosis;
+  if (!stop.empty()) throw Error(stop);
 }
 
 RunResult RunLoop::run() {

@@ -10,7 +10,8 @@ fluid.pressure_subscale values:
 Per run: the exit status (a fluid guard stop names the solve that did not converge), the most FGMRES
 iterations a step took, the pressure range at the end (hydrostatic: +-4905 Pa) and the largest speed.
 
-Usage: bench/fluid_viscosity_study.py build/ci/rift [--json out.json]
+Usage: bench/fluid_viscosity_study.py build/ci/rift [--json out.json] [--set key=value ...]
+(--set is passed to every run, e.g. --set fluid.schur_restart=100).
 """
 import argparse
 import csv
@@ -54,13 +55,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("rift")
     ap.add_argument("--json")
+    ap.add_argument("--set", action="append", default=[], help="key=value for every run")
     args = ap.parse_args()
     results = []
     with tempfile.TemporaryDirectory() as tmp:
         for case, (scene, extra) in CASES.items():
             for mu in VISCOSITIES:
                 for sub in ("quasi_static", "dynamic"):
-                    sets = [f"fluid.viscosity={mu}", f"fluid.pressure_subscale={sub}"] + extra
+                    sets = [f"fluid.viscosity={mu}", f"fluid.pressure_subscale={sub}"] + extra + args.set
                     r = run(args.rift, scene, sets, os.path.join(tmp, f"{case}_{mu}_{sub}"))
                     r.update(case=case, viscosity=float(mu), subscale=sub)
                     results.append(r)

@@ -2,7 +2,9 @@
 // Right-preconditioned flexible GMRES(m) (Saad 1993, "A flexible inner-outer preconditioned GMRES
 // algorithm"): solves A x = b for an operator and a preconditioner given as callables, where the
 // preconditioner may change from one iteration to the next (an inner iterative solve, as the fluid's
-// pressure Schur complement uses). The workspace is sized once (resize) so solve allocates nothing.
+// pressure Schur complement uses). The basis vectors are allocated the first time a cycle reaches them and
+// kept: a long restart costs memory only where a solve needs its depth, and once a run's solves have
+// reached their depth, solve allocates nothing.
 //
 //   apply(v, w):        w = A v
 //   precondition(r, z): z ~ M^-1 r
@@ -26,8 +28,11 @@ class Fgmres {
   void resize(size_t n, int m) {
     n_ = n;
     m_ = std::max(m, 1);
-    v_.assign(static_cast<size_t>(m_ + 1) * n, 0.0);
-    z_.assign(static_cast<size_t>(m_) * n, 0.0);
+    v_.clear();
+    z_.clear();
+    v_.reserve(static_cast<size_t>(m_) +
+               1);  // so pointers into earlier vectors stay valid as the basis grows
+    z_.reserve(static_cast<size_t>(m_));
     h_.assign(static_cast<size_t>(m_ + 1) * static_cast<size_t>(m_), 0.0);
     for (auto* w : {&g_, &cs_, &sn_, &y_}) w->assign(static_cast<size_t>(m_) + 1, 0.0);
   }
@@ -43,18 +48,18 @@ class Fgmres {
     res.residual = beta;
     res.converged = beta <= target;
     if (res.converged) return res;
-    std::copy(b.begin(), b.end(), v_.begin());  // r = b - A 0
+    std::copy(b.begin(), b.end(), basis(v_, 0));  // r = b - A 0
     while (res.iterations < max_iterations) {
-      double* v0 = v_.data();
+      double* v0 = basis(v_, 0);
       for (size_t i = 0; i < n; ++i) v0[i] /= beta;
       std::fill(g_.begin(), g_.end(), 0.0);
       g_[0] = beta;
       int j = 0;
       for (; j < m && res.iterations < max_iterations; ++j) {
         ++res.iterations;
-        double* vj = v_.data() + static_cast<size_t>(j) * n;
-        double* zj = z_.data() + static_cast<size_t>(j) * n;
-        double* w = v_.data() + static_cast<size_t>(j + 1) * n;
+        double* vj = basis(v_, j);
+        double* zj = basis(z_, j);
+        double* w = basis(v_, j + 1);
         precondition(std::span<const double>(vj, n), std::span<double>(zj, n));
         apply(std::span<const double>(zj, n), std::span<double>(w, n));
         const double hn = orthogonalise(j, w);
@@ -68,9 +73,10 @@ class Fgmres {
       update(j, x);
       if (res.residual <= target) break;
       // Restart from the true residual r = b - A x.
-      apply(std::span<const double>(x.data(), n), std::span<double>(v_.data(), n));
-      for (size_t q = 0; q < n; ++q) v_[q] = b[q] - v_[q];
-      beta = std::sqrt(dot(v_.data(), v_.data()));
+      double* r = basis(v_, 0);
+      apply(std::span<const double>(x.data(), n), std::span<double>(r, n));
+      for (size_t q = 0; q < n; ++q) r[q] = b[q] - r[q];
+      beta = std::sqrt(dot(r, r));
       res.residual = beta;
       if (beta <= target) break;
     }
@@ -84,6 +90,13 @@ class Fgmres {
     for (size_t i = 0; i < n_; ++i) s += a[i] * c[i];
     return s;
   }
+  // Vector i of a basis (n values), allocated on first use.
+  double* basis(std::vector<std::vector<double>>& vs, int i) {
+    const auto k = static_cast<size_t>(i);
+    if (vs.size() <= k) vs.resize(k + 1);
+    if (vs[k].size() != n_) vs[k].assign(n_, 0.0);
+    return vs[k].data();
+  }
   double& h(int i, int j) {
     return h_[static_cast<size_t>(i) * static_cast<size_t>(m_) + static_cast<size_t>(j)];
   }
@@ -91,7 +104,7 @@ class Fgmres {
   // Modified Gram-Schmidt of w against v_0 .. v_j into column j of H; w normalised. Returns ||w|| before.
   double orthogonalise(int j, double* w) {
     for (int i = 0; i <= j; ++i) {
-      const double* vi = v_.data() + static_cast<size_t>(i) * n_;
+      const double* vi = v_[static_cast<size_t>(i)].data();
       const double hij = dot(w, vi);
       h(i, j) = hij;
       for (size_t q = 0; q < n_; ++q) w[q] -= hij * vi[q];
@@ -128,14 +141,15 @@ class Fgmres {
       y_[i] = sum / h(i, i);
     }
     for (int i = 0; i < j; ++i) {
-      const double* zi = z_.data() + static_cast<size_t>(i) * n_;
+      const double* zi = z_[static_cast<size_t>(i)].data();
       for (size_t q = 0; q < n_; ++q) x[q] += y_[i] * zi[q];
     }
   }
 
   size_t n_ = 0;
   int m_ = 1;
-  std::vector<double> v_, z_, h_, g_, cs_, sn_, y_;  // basis (m + 1), preconditioned basis (m), Hessenberg
+  std::vector<std::vector<double>> v_, z_;   // basis (up to m + 1), preconditioned basis (up to m)
+  std::vector<double> h_, g_, cs_, sn_, y_;  // Hessenberg (m + 1) x m, rotations, right-hand side
 };
 
 }  // namespace rift

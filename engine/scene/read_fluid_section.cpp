@@ -104,7 +104,7 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
       static_cast<int>(sec.integer("velocity_max_iterations", IntRule{1, 1000000}, 2000));
   f.schur_tolerance = sec.real("schur_tolerance", RealRule{"", 0.0, 1.0, true, true}, 1e-8);
   f.schur_max_iterations = static_cast<int>(sec.integer("schur_max_iterations", IntRule{1, 100000}, 200));
-  f.schur_restart = static_cast<int>(sec.integer("schur_restart", IntRule{1, 1000}, 50));
+  f.schur_restart = static_cast<int>(sec.integer("schur_restart", IntRule{1, 1000}, 100));
   f.pressure_tolerance = sec.real("pressure_tolerance", RealRule{"", 0.0, 1.0, true, true}, 1e-8);
   f.pressure_max_iterations =
       static_cast<int>(sec.integer("pressure_max_iterations", IntRule{1, 100000}, 200));

@@ -260,7 +260,7 @@ struct FluidSpec {
   int velocity_max_iterations = 2000;
   double schur_tolerance = 1e-8;
   int schur_max_iterations = 200;
-  int schur_restart = 50;
+  int schur_restart = 100;  // a restart discards the Krylov space (docs/fluid.md)
   double pressure_tolerance = 1e-8;
   int pressure_max_iterations = 200;
   std::array<double, 3> body_force{};        // [N/m^3]

@@ -260,8 +260,9 @@ std::optional<std::string> FluidModel::check_health(const StepContext& after) {
           "cause: an ill-conditioned step (extreme viscosity, density or absorption contrasts for this dt "
           "and mesh); with fluid.pressure_subscale: quasi_static, a low-viscosity fluid near rest (the "
           "stabilisation's tau = h^2 / (4 mu) far above dt / rho). What to change: fluid.pressure_subscale: "
-          "dynamic (bounds tau by dt / rho, same steady state), raise fluid.schur_max_iterations or "
-          "fluid.schur_tolerance, lower fluid.dt, or refine the mesh where the contrast is.",
+          "dynamic (bounds tau by dt / rho, same steady state), raise fluid.schur_max_iterations (with "
+          "fluid.schur_restart as large: a restart discards the Krylov space) or fluid.schur_tolerance, "
+          "lower fluid.dt, or refine the mesh where the contrast is.",
           after.step, after.time, r.picard_iterations,
           r.momentum_failures > 0
               ? fmt::format("{} momentum (BiCGSTAB) solves stopped at {} iterations", r.momentum_failures,

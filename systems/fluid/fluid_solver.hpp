@@ -94,7 +94,7 @@ struct FluidSettings {
   int velocity_max_iterations = 2000;
   PressureCoupling coupling = PressureCoupling::schur_gmres;
   double schur_rel_tol = 1e-8;  // FGMRES on the Schur complement, relative to its initial residual
-  int schur_restart = 50;
+  int schur_restart = 100;      // a restart discards the Krylov space (docs/fluid.md)
   int schur_max_iterations = 200;
   AmgPcgSettings pressure_solver{};
   bool verbose = false;  // one line per Picard iteration on stderr

@@ -30,8 +30,8 @@ class Fgmres {
     m_ = std::max(m, 1);
     v_.clear();
     z_.clear();
-    v_.reserve(static_cast<size_t>(m_) +
-               1);  // so pointers into earlier vectors stay valid as the basis grows
+    // Reserved so that pointers into earlier vectors stay valid while the basis grows.
+    v_.reserve(static_cast<size_t>(m_) + 1);
     z_.reserve(static_cast<size_t>(m_));
     h_.assign(static_cast<size_t>(m_ + 1) * static_cast<size_t>(m_), 0.0);
     for (auto* w : {&g_, &cs_, &sn_, &y_}) w->assign(static_cast<size_t>(m_) + 1, 0.0);

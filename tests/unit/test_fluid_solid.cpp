@@ -286,7 +286,7 @@ TEST(FluidSolidRun, ARestartFromMidWindowContinuesBitForBit) {
 // Water (mu = 1e-3 Pa s) around the neutrally buoyant block, at rest and thrown. With the quasi-static
 // pressure subscale tau = h^2 / (4 mu) is ~1e6 x dt / rho; FGMRES restarted every 50 iterations stalls at
 // its cap on the thrown block, and the run must stop saying so (it once completed with every Schur solve at
-// its cap). Unrestarted within the cap (the default) both subscales converge: at rest the state is the
+// its cap). Restarted every 100 (the default) both subscales converge: at rest the state is the
 // hydrostatic one, Archimedes' force to 1e-6 (the Schur tolerance 1e-8 on a pressure of 4.9 kPa leaves
 // ~1e-9 of it) and the block at rest; thrown, the run completes.
 TEST(FluidSolidRun, WaterAroundABlockConvergesWithEitherSubscaleAndAStalledSolveStops) {

@@ -138,7 +138,7 @@ TEST(FluidSolver, HydrostaticBoxStaysAtRestWithAJumpInSigma) {
 // ~1e6 x dt / rho: the Schur complement's smooth modes scale with dt / rho and its rough ones with tau, and
 // FGMRES needs the Krylov space of both. Restarted every 50 iterations it stalls at its cap, and the step
 // must say it did not converge (it once reported convergence: the stalled FGMRES made a small Picard
-// change). Unrestarted within the cap (the default), and with the dynamic subscale (tau_t <= dt / rho), it
+// change). Restarted every 100 (the default), and with the dynamic subscale (tau_t <= dt / rho), it
 // converges: at rest to round-off, the pressure hydrostatic to the Schur tolerance (1e-8 of the initial
 // residual: 1e-8 x rho g H).
 TEST(FluidSolver, WaterAtRestConvergesWithEitherSubscaleAndAStalledSolveIsReported) {

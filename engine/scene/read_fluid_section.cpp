@@ -146,7 +146,16 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   static constexpr std::array<std::string_view, 2> kForces{"volume", "wetted_faces"};
   c.force = static_cast<FluidSolidSpec::Force>(sec.choice("force", kForces, 0));
   c.substeps = sec.integer("substeps", IntRule{0, INT32_MAX}, 0);
-  c.beta = sec.real("beta", positive(""), 1.0);
+  if (sec.has("relaxation_time")) {
+    c.relaxation_time = sec.real("relaxation_time", positive("s"), std::nullopt);
+    sec.forbid("beta",
+               "with fluid_solid.relaxation_time, which sets the absorption itself (beta = fluid.dt / "
+               "relaxation_time)");
+    sec.unused().real("beta", positive(""), 1.0);  // its rule, for the scenes that give beta
+  } else {
+    c.beta = sec.real("beta", positive(""), 1.0);
+    sec.unused().real("relaxation_time", positive("s"), std::nullopt);
+  }
   c.added_mass = sec.real("added_mass", non_negative(""), 0.0);
   c.dilatation = sec.boolean("dilatation", false);
   static constexpr std::array<std::string_view, 2> kContinuity{"mixture", "fluid"};

@@ -320,7 +320,10 @@ void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(0, "fluid_solid");
   o.line(1, "force", c.force == FluidSolidSpec::Force::volume ? "volume" : "wetted_faces");
   o.line(1, "substeps", std::to_string(c.substeps));
-  o.line(1, "beta", yaml_real(c.beta));
+  if (c.relaxation_time > 0.0)
+    o.line(1, "relaxation_time", yaml_real(c.relaxation_time));
+  else
+    o.line(1, "beta", yaml_real(c.beta));
   o.line(1, "added_mass", yaml_real(c.added_mass));
   o.line(1, "dilatation", c.dilatation ? "true" : "false");
   o.line(1, "continuity", c.continuity == FluidSolidSpec::Continuity::mixture ? "mixture" : "fluid");

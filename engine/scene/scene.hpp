@@ -283,6 +283,10 @@ struct FluidSolidSpec {
   Force force = Force::volume;
   int64_t substeps = 0;  // solid steps per fluid step; 0: the fewest with dt_s <= time.safety x stable step
   double beta = 1.0;     // absorption weight: sigma = beta rho_f alpha_s / fluid.dt
+  // > 0: the absorption's relaxation time instead, sigma = rho_f alpha_s / relaxation_time, the same at every
+  // fluid.dt (beta = fluid.dt / relaxation_time), so that a shorter fluid step does not stiffen the pull of
+  // the solid on the fluid of the cells it cuts (docs/coupling.md). 0: beta is given.
+  double relaxation_time = 0.0;
   // c_a: virtual mass c_a rho_f V added to the solid's nodes (V: their share of the solid inside the fluid at
   // t = 0) and c_a rho_f V a (a: the node's mean acceleration over the last window) added to its fluid force,
   // so the staggered exchange stays stable for a solid lighter than about the fluid (added-mass

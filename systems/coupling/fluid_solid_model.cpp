@@ -24,7 +24,7 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
                                  std::vector<int32_t> well_wall_tets)
     : store_(store), fluid_(fluid), spec_(spec), adapter_(std::move(adapter)) {
   settings_.substeps = fluid.substeps();
-  settings_.beta = spec.beta;
+  settings_.beta = spec.relaxation_time > 0.0 ? fluid.spec().dt / spec.relaxation_time : spec.beta;
   settings_.rho = fluid.spec().density;
   settings_.dt = fluid.spec().dt;
   settings_.body_force = fluid.spec().body_force;
@@ -299,6 +299,7 @@ void FluidSolidModel::summarize(nlohmann::json& summary) const {
   auto& s = summary["fluid_solid"];
   s["substeps"] = settings_.substeps;
   s["beta"] = settings_.beta;
+  if (spec_.relaxation_time > 0.0) s["relaxation_time"] = spec_.relaxation_time;
   s["added_mass"] = settings_.added_mass;
   s["coupling"] = spec_.coupling == FluidSolidSpec::Coupling::concurrent ? "concurrent" : "sequential";
   s["force_model"] = settings_.volume_force ? "volume" : "wetted_faces";

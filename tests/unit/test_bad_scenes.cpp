@@ -112,6 +112,11 @@ const std::vector<BadScene> kBadScenes = {
     {"fluid_solid_coupling.yaml",
      {{28, 13, "fluid_solid.coupling", "one of sequential, concurrent", "'concurent'",
        "did you mean 'concurrent'?"}}},
+    {"fluid_solid_beta_and_relaxation_time.yaml",
+     {{28, 3, "fluid_solid.beta",
+       "no 'beta' key with fluid_solid.relaxation_time, which sets the absorption itself (beta = fluid.dt / "
+       "relaxation_time)",
+       "one", ""}}},
     {"fluid_scheme_and_theta.yaml",
      {{10, 14, "fluid.mesh.generate.cells", "three whole numbers of cells >= 1", "a list of 3 items", ""},
       {15, 11, "fluid.scheme", "either theta or scheme, not both", "'crank_nicolson'", ""}}},

@@ -19,6 +19,7 @@
 #include "kernels/fluid_solid_exchange.hpp"
 #include "kernels/tet_intersection.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
+#include "systems/fluid/fluid_tables.hpp"
 #include "systems/simulation.hpp"
 #include "systems/solid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
@@ -256,6 +257,27 @@ TEST(FluidSolidRun, ANeutrallyBuoyantBlockStaysAtRest) {
   // Weight and buoyancy cancel to round-off: g dt_total = 0.2 m/s would be the speed without the fluid.
   EXPECT_LT(speed, 1e-9);
   EXPECT_GT(store.table(coupling::state_table).span<int64_t>("exchanges")[0], 3);
+}
+
+// fluid_solid.relaxation_time tau: every cell's absorption is rho_f alpha / tau at any fluid.dt (beta =
+// fluid.dt / tau), where beta alone gives beta rho_f alpha / fluid.dt, which doubles as fluid.dt halves.
+TEST(FluidSolidRun, ARelaxationTimeGivesTheSameAbsorptionAtEveryFluidStep) {
+  const double tau = 0.02, rho = 1000.0;
+  for (const char* dt : {"0.005", "0.0025"}) {
+    Simulation sim(block_scene({"fluid_solid.beta=null", "fluid_solid.relaxation_time=0.02",
+                                std::string("fluid.dt=") + dt, "time.end=0.01"}),
+                   quiet());
+    while (sim.step() < sim.total_steps()) sim.step_once();
+    const Table& cells = sim.world().store.table(fluid::tet_table);
+    const auto alpha = cells.span<const double>("solid_fraction");
+    const auto sigma = cells.span<const double>("absorption");
+    size_t cut = 0;
+    for (size_t k = 0; k < alpha.size(); ++k) {
+      EXPECT_NEAR(sigma[k], rho * alpha[k] / tau, 1e-12 * rho / tau) << "cell " << k << " at fluid.dt " << dt;
+      cut += alpha[k] > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(cut, 0u);
+  }
 }
 
 // A moving block (initial velocity) so the penalty and inertia terms are exercised.

@@ -44,12 +44,6 @@ namespace {
 constexpr double kElement = 0.008;                     // the coarse preset's largest tet
 constexpr double kTipX = 0.0245, kNotchPlaneY = 0.05;  // the notch's tip line (through z)
 constexpr double kRampStart = 1.0e-4;
-constexpr double kFluidStep = 2.5e-6;  // the scene's fluid.dt
-
-// The inlet's pressure P(t): 15 MPa, then 2e4 MPa/s from the ramp's start.
-double inlet_pressure(double t) {
-  return 1.5e7 + std::max(0.0, t - kRampStart) * 2.0e10;
-}
 
 // No field outputs: the breaks are read from fractures.csv.
 Scene coarse_wedge(std::vector<std::string> more) {
@@ -135,15 +129,15 @@ int64_t cell_holding(std::span<const double> x, std::span<const int32_t> tets, c
   return -1;
 }
 
-// The surrounding fluid's pressure range less P(t), from the coupling's time-series columns.
-std::pair<double, double> region_pressure_deviation(Simulation& sim) {
+// The surrounding fluid's pressure range less the inlet's P(t), from the coupling's time-series columns.
+std::pair<double, double> region_pressure_deviation(Simulation& sim, const TimeFunction& inlet) {
   std::vector<std::pair<std::string, double>> row;
   for (auto& m : sim.world().models)
     if (auto* c = dynamic_cast<FluidSolidModel*>(m.get())) c->metrics(sim.time(), row);
   double lo = 0.0, hi = 0.0;
   for (const auto& [name, value] : row) {
-    if (name == "fluid_region_pressure_min") lo = value - inlet_pressure(sim.time());
-    if (name == "fluid_region_pressure_max") hi = value - inlet_pressure(sim.time());
+    if (name == "fluid_region_pressure_min") lo = value - inlet(sim.time());
+    if (name == "fluid_region_pressure_max") hi = value - inlet(sim.time());
   }
   return {lo, hi};
 }
@@ -156,14 +150,15 @@ double median(std::vector<double> v) {
 TEST(PaperWedgeObservations, TheCrackStartsAtTheTipTensionLeadsItTheFluidTrailsItAndTheMeshFollows) {
   const Scene scene = coarse_wedge({"time.end=2.0e-4"});
   const double every = 2.5e-5;
-  double next = kRampStart, next_fluid = kFluidStep;
+  const TimeFunction& inlet = scene.fluid->boundaries.at(0).function;  // the inlet's P(t)
+  double next = kRampStart, next_fluid = scene.fluid->dt;
   int checks = 0, crack_checks = 0;
   double region_low = 0.0, region_high = 0.0;
   std::vector<Break> breaks;
   const RunResult r = validation::run_watching(scene, 2, [&](Simulation& sim) {
     if (sim.time() >= next_fluid - 1e-3 * sim.dt()) {  // the fluid has just stepped to this time
-      next_fluid += kFluidStep;
-      const auto [lo, hi] = region_pressure_deviation(sim);
+      next_fluid += scene.fluid->dt;
+      const auto [lo, hi] = region_pressure_deviation(sim, inlet);
       region_low = std::min(region_low, lo);
       region_high = std::max(region_high, hi);
     }

@@ -1,5 +1,5 @@
 // The paper's observations (Guo et al. 2015, section 5) on the coupled wedge's coarse preset
-// (scenes/examples/guo2015_wedge.yaml: 4 / 8 mm tets, 4 mm fluid cells at the notch, mass scaling 1e-8 s),
+// (scenes/examples/guo2015_wedge.yaml: 4 / 8 mm tets, 4 mm fluid cells at the notch, mass scaling 1.5e-8 s),
 // the part of them that holds up to 0.2 ms (0.1 ms into the ramp):
 //  - no joint breaks while the inlet holds 15 MPa (0.1 ms), nor while it holds 14 MPa for as long;
 //  - the crack starts after the ramp begins, at the notch's tip (its first break within two elements,

@@ -126,7 +126,8 @@ JointStatus joint_forces_scalar(const JointArgs& a, size_t begin, size_t end) {
     for (size_t q = 0; q < P; ++q) {
       double o, sv[3], s;
       point_jump(g, rule.N[q], o, sv, s);
-      const JointPointResponse r = joint_point_response(m, k, a.softening, Z, o, s, history[q]);
+      JointPointResponse r = joint_point_response(m, k, a.softening, Z, o, s, history[q]);
+      joint_law::settle_tractions(r);
       status.damage_onsets += history[q] == 0.0 && r.d_max > 0.0;
       history[q] = r.d_max;
       failed += r.d_max >= 1.0;

@@ -1,8 +1,8 @@
-// The AVX2 fast path of joint_forces: four consecutive joints per register, one joint per lane. The law of
-// joint_law.hpp is restated lane-wise: both sides of each branch are computed and blended, with the same
-// expressions in the same order as the scalar reference, so the two paths agree to the last few bits (the
-// unit tests compare them on random joints in every state). The softened branch, with its exp, is only
-// evaluated when some lane is damaged, and z(D) is taken from the scalar softening_z lane by lane.
+// The AVX2 fast path of joint_forces: four consecutive joints per register, one joint per lane. The point
+// law is joint_law.hpp's, instantiated on the 4-wide lane type (Lanes<V4> below); the geometry and the sums
+// over the points are restated lane-wise here with the same expressions in the same order as the scalar
+// kernel, so the two paths agree to the compiler's fused multiply-adds (the unit tests compare them on
+// random joints in every state).
 // Groups holding a broken or degenerate joint go through joint_forces_scalar joint by joint (rare, and
 // those joints need no law). A partial group at the end of [begin, end) repeats its last joint in the spare
 // lanes and stores only the real ones, so each joint takes the same arithmetic whatever the thread split.
@@ -86,9 +86,40 @@ void load_geometry(const JointArgs& a, const size_t joint[4], GeometryV& g) {
   g.h = _mm256_sqrt_pd(_mm256_min_pd(_mm256_min_pd(len2(e1), len2(e2)), len2(e3)));
 }
 
-struct MaterialV {
-  V4 p, ft, c, tan_phi, GI, GII, mu;
+}  // namespace
+
+// The joint law's lane operations on four joints (joint_law.hpp).
+template <>
+struct joint_law::Lanes<V4> {
+  using Mask = V4;  // all bits set in the lanes where the condition holds
+  static V4 splat(double a) { return _mm256_set1_pd(a); }
+  static V4 none() { return _mm256_setzero_pd(); }
+  static V4 less(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
+  static V4 greater(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+  static V4 equal(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }
+  static V4 not_positive(V4 a) { return _mm256_cmp_pd(a, _mm256_setzero_pd(), _CMP_NGT_UQ); }  // NaN too
+  static V4 both(V4 a, V4 b) { return _mm256_and_pd(a, b); }
+  static V4 either(V4 a, V4 b) { return _mm256_or_pd(a, b); }
+  static bool any(V4 m) { return _mm256_movemask_pd(m) != 0; }
+  static bool all(V4 m) { return _mm256_movemask_pd(m) == 0xF; }
+  static V4 select(V4 m, V4 if_true, V4 if_false) { return simd::select(m, if_true, if_false); }
+  static V4 keep(V4 m, V4 a) { return simd::keep(m, a); }
+  static V4 sqrt(V4 a) { return _mm256_sqrt_pd(a); }
+  static V4 max(V4 a, V4 b) { return _mm256_max_pd(a, b); }
+  static V4 min(V4 a, V4 b) { return _mm256_min_pd(a, b); }
+  // z(D) lane by lane with the scalar function: the exp is only evaluated for damaged points.
+  static V4 softening_z(V4 D) {
+    alignas(32) double lane_D[4], lane_z[4];
+    _mm256_store_pd(lane_D, D);
+    for (int l = 0; l < 4; ++l) lane_z[l] = kernels::softening_z(lane_D[l]);
+    return _mm256_load_pd(lane_z);
+  }
 };
+
+namespace {
+
+using MaterialV = joint_law::Material<V4>;
+using ScalesV = joint_law::Scales<V4>;
 
 MaterialV load_materials(const JointArgs& a, const size_t joint[4]) {
   const JointMaterial* m[4];
@@ -103,99 +134,6 @@ MaterialV load_materials(const JointArgs& a, const size_t joint[4]) {
           field(&JointMaterial::G_I),
           field(&JointMaterial::G_II),
           field(&JointMaterial::residual_friction)};
-}
-
-// softening_length and floored_length of joint_law.hpp; short_mask gets the lanes that were floored.
-V4 floored_length(Softening rule, V4 f, V4 peak, V4 G, double Z, V4& short_mask) {
-  const V4 L = rule == Softening::y_compatible ? _mm256_max_pd(2.0 * peak, 3.0 * G / f)
-                                               : (G - (2.0 / 3.0) * f * peak) / (f * Z);
-  short_mask = _mm256_cmp_pd(L, set1(0.0), _CMP_NGT_UQ);  // !(L > 0), NaN included
-  return simd::select(short_mask, kBrittleSofteningFraction * peak, L);
-}
-
-struct ScalesV {  // JointScales, lane-wise
-  V4 k, c2, op, inv_op, ot, inv_ot, sp0, inv_sp0, st0, inv_st0, short_normal, short_shear0;
-};
-
-ScalesV scales(const MaterialV& m, V4 h, Softening rule, double Z) {
-  ScalesV k;
-  k.k = m.p / h;
-  k.c2 = 2.0 * h / m.p;
-  k.op = m.ft * k.c2;
-  k.inv_op = 0.5 * k.k / m.ft;
-  k.ot = floored_length(rule, m.ft, k.op, m.GI, Z, k.short_normal);
-  k.inv_ot = 1.0 / k.ot;
-  k.sp0 = m.c * k.c2;
-  k.inv_sp0 = 0.5 * k.k / m.c;
-  k.st0 = floored_length(rule, m.c, k.sp0, m.GII, Z, k.short_shear0);
-  k.inv_st0 = 1.0 / k.st0;
-  return k;
-}
-
-struct PointV {  // JointPointResponse, lane-wise (tau itself is not needed by the kernel)
-  V4 sigma, tau_per_slip, d_max, energy, normal_part, shear_part, short_shear;
-};
-
-// The softened (D_eff > 0) branch of joint_point_response for all lanes, given the shared quantities.
-void softened(const MaterialV& m, const ScalesV& k, V4 o, V4 s, V4 De, V4 comp, V4 sigma_c, V4 fs, V4 sp,
-              V4 st, PointV& r) {
-  alignas(32) double lane_D[4], lane_z[4];
-  _mm256_store_pd(lane_D, De);
-  for (int l = 0; l < 4; ++l) lane_z[l] = softening_z(lane_D[l]);
-  const V4 z = _mm256_load_pd(lane_z);
-  r.sigma = simd::select(comp, sigma_c, z * m.ft / (k.op + De * k.ot) * o);
-  r.tau_per_slip = z * fs / (sp + De * st);
-  const V4 tau = r.tau_per_slip * s;
-  r.energy = 0.5 * (r.sigma * o + tau * s);
-}
-
-PointV point_law(const MaterialV& m, const ScalesV& k, Softening rule, double Z, V4 o, V4 s, V4 d_max) {
-  const V4 zero = set1(0.0);
-  const V4 comp = less(o, zero);
-  const V4 sigma_c = simd::keep(comp, k.k * o);
-  const bool any_comp = lanes(comp) != 0;
-  const V4 fs = any_comp ? simd::select(comp, m.c - sigma_c * m.tan_phi, m.c) : m.c;
-  const V4 sp = any_comp ? simd::select(comp, fs * k.c2, k.sp0) : k.sp0;
-  const V4 inv_sp = any_comp ? simd::select(comp, 1.0 / sp, k.inv_sp0) : k.inv_sp0;
-  // The confined softening length (two divisions) exactly where the scalar code computes it: compressed
-  // lanes past the peak slip or damaged. A compressed lane has Dn = 0, so D_eff > 0 there iff s > sp or
-  // D_max > 0, which is known before D.
-  V4 st = k.st0, inv_st = k.inv_st0, short_confined = set1(0.0);
-  const V4 needed = both(comp, either(greater(s, sp), greater(d_max, set1(0.0))));
-  if (lanes(needed) != 0) {
-    const V4 st_confined = floored_length(rule, fs, sp, m.GII, Z, short_confined);
-    st = simd::select(comp, st_confined, k.st0);
-    inv_st = simd::select(comp, 1.0 / st_confined, k.inv_st0);
-  }
-
-  PointV r;
-  const V4 Dn = simd::keep(greater(o, k.op), (o - k.op) * k.inv_ot);
-  const V4 Ds = simd::keep(greater(s, sp), (s - sp) * inv_st);
-  r.normal_part = Dn * Dn;
-  r.shear_part = Ds * Ds;
-  const V4 mixed = both(greater(Dn, zero), greater(Ds, zero));
-  V4 D = Dn + Ds;  // the square root (long latency) only when some lane is in mixed mode
-  if (lanes(mixed) != 0) D = simd::select(mixed, _mm256_sqrt_pd(r.normal_part + r.shear_part), D);
-  const V4 De = _mm256_min_pd(_mm256_max_pd(D, d_max), set1(1.0));
-  r.d_max = De;
-  r.short_shear = simd::select(needed, short_confined, k.short_shear0);
-
-  // Intact branch (hardening curves).
-  const V4 x = o * k.inv_op;
-  r.sigma = simd::select(comp, sigma_c, m.ft * x * (2.0 - x));
-  const V4 normal_energy = simd::select(comp, 0.5 * sigma_c * o, m.ft * k.op * x * x * (1.0 - x / 3.0));
-  const V4 y = s * inv_sp;
-  r.tau_per_slip = fs * (2.0 - y) * inv_sp;
-  r.energy = normal_energy + fs * sp * y * y * (1.0 - y / 3.0);
-  const V4 intact = _mm256_cmp_pd(De, zero, _CMP_EQ_OQ);
-  if (lanes(intact) == 0xF) return r;
-
-  PointV d = r;
-  softened(m, k, o, s, De, comp, sigma_c, fs, sp, st, d);
-  r.sigma = simd::select(intact, r.sigma, d.sigma);
-  r.tau_per_slip = simd::select(intact, r.tau_per_slip, d.tau_per_slip);
-  r.energy = simd::select(intact, r.energy, d.energy);
-  return r;
 }
 
 struct Sums {  // per-joint accumulators over the points
@@ -217,7 +155,7 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
   t.short_any = k.short_normal;
   t.slider = zero;
   t.damage_onsets = 0;
-  const V4 has_friction = greater(m.mu, zero);
+  const V4 has_friction = greater(m.residual_friction, zero);
   for (size_t q = 0; q < P; ++q) {
     const double N0 = rule.N[q][0], N1 = rule.N[q][1], N2 = rule.N[q][2], w = rule.w[q];
     V4 d[3], sv[3];
@@ -226,7 +164,8 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
     for (int c = 0; c < 3; ++c) sv[c] = d[c] - o * g.n[c];
     const V4 s = _mm256_sqrt_pd(sv[0] * sv[0] + sv[1] * sv[1] + sv[2] * sv[2]);
     const V4 d_max = _mm256_setr_pd(history[0][q], history[1][q], history[2][q], history[3][q]);
-    const PointV r = point_law(m, k, a.softening, Z, o, s, d_max);
+    joint_law::Point<V4> r = joint_law::point(m, k, a.softening, Z, o, s, d_max);
+    joint_law::settle_tractions(r);
     alignas(32) double updated[4];
     _mm256_store_pd(updated, r.d_max);
     for (int l = 0; l < count; ++l) {
@@ -296,12 +235,12 @@ void process_group(const JointArgs& a, const size_t joint[4], int count, double 
   load_geometry(a, joint, g);
   if ((lanes(g.ok) & ((1 << count) - 1)) != (1 << count) - 1) return scalar_group(a, joint, count, status);
   const MaterialV m = load_materials(a, joint);
-  const ScalesV k = scales(m, g.h, a.softening, Z);
+  const ScalesV k = joint_law::scales(m, g.h, a.softening, Z);
   // The residual-friction slider keeps a slip history (joint_law.hpp): a group with such a point goes
   // through the scalar path from its state before this call. Damaged joints are few, and a group without
   // residual friction (most scenes) saves nothing.
   const int real = (1 << count) - 1;
-  const bool may_slide = (lanes(greater(m.mu, set1(0.0))) & real) != 0;
+  const bool may_slide = (lanes(greater(m.residual_friction, set1(0.0))) & real) != 0;
   const size_t P = static_cast<size_t>(a.rule->points);
   double saved[4][kMaxJointPoints];
   if (may_slide)

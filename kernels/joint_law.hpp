@@ -1,7 +1,8 @@
 #pragma once
 // Traction-separation law of the 6-node joint at one integration point (femdem.md 1b: Munjiza/Y3D with
-// Guo's Mohr-Coulomb, separate G_I / G_II, and D_max irreversibility). Inline: joint_forces.cpp calls it in
-// its inner loop, the tests call it directly.
+// Guo's Mohr-Coulomb, separate G_I / G_II, and D_max irreversibility), written once for one point (double)
+// or four joints' points (the AVX2 kernel); joint_forces.cpp and joint_forces_avx2.cpp call it in their
+// inner loops, the tests call the scalar form directly.
 //
 // Inputs: opening o (> 0 = the sides separate), slip s = |sliding vector| >= 0, the point's D_max so far.
 // Lengths, with h = the joint's element size and k = p / h:
@@ -55,38 +56,101 @@
 
 namespace rift::kernels {
 
-struct JointMaterial {
-  double penalty;                  // p [Pa]; the joint's stiffness per unit area is p / h
-  double tensile_strength;         // f_t [Pa]
-  double cohesion;                 // c [Pa]
-  double tan_friction;             // tan(phi) of the Mohr-Coulomb envelope
-  double G_I, G_II;                // fracture energies [J/m2]
-  double residual_friction = 0.0;  // mu_res, shear transmitted by a fully softened point in compression
+// The law is written once, for a lane type T: double (the scalar reference, one point) or a 4-wide vector
+// (joint_forces_avx2.cpp: one joint per lane). Branches become masks and blends: both sides of a branch
+// are computed and the lanes pick theirs, except where every lane takes the same side (the compression,
+// the confined softening length, the mixed-mode root and the softened branch are only evaluated when some
+// lane needs them). For double the masks are bools, so the reference takes exactly its own branch.
+// Lanes<T> supplies the operations that differ: comparisons (masks), blends, sqrt, min and max, z(D).
+namespace joint_law {
+
+template <class T>
+struct Lanes;
+
+template <>
+struct Lanes<double> {
+  using Mask = bool;
+  static double splat(double a) { return a; }
+  static bool none() { return false; }
+  static bool less(double a, double b) { return a < b; }
+  static bool greater(double a, double b) { return a > b; }
+  static bool equal(double a, double b) { return a == b; }
+  static bool not_positive(double a) { return !(a > 0.0); }  // NaN included
+  static bool both(bool a, bool b) { return a && b; }
+  static bool either(bool a, bool b) { return a || b; }
+  static bool any(bool m) { return m; }
+  static bool all(bool m) { return m; }
+  static double select(bool m, double if_true, double if_false) { return m ? if_true : if_false; }
+  static bool select(bool m, bool if_true, bool if_false) { return m ? if_true : if_false; }
+  static double keep(bool m, double a) { return m ? a : 0.0; }
+  static double sqrt(double a) { return std::sqrt(a); }
+  // As the vector instructions (maxpd, minpd): the second operand when either is NaN; inline, where
+  // std::fmax is a call.
+  static double max(double a, double b) { return a > b ? a : b; }
+  static double min(double a, double b) { return a < b ? a : b; }
+  static double softening_z(double D) { return kernels::softening_z(D); }
 };
+
+template <class T>
+struct Material {
+  T penalty;                  // p [Pa]; the joint's stiffness per unit area is p / h
+  T tensile_strength;         // f_t [Pa]
+  T cohesion;                 // c [Pa]
+  T tan_friction;             // tan(phi) of the Mohr-Coulomb envelope
+  T G_I, G_II;                // fracture energies [J/m2]
+  T residual_friction = T{};  // mu_res, shear transmitted by a fully softened point in compression
+};
+
+// What depends on the joint (h, material) but not on the point; the inverses spare per-point divisions.
+template <class T>
+struct Scales {
+  using Mask = typename Lanes<T>::Mask;
+  T stiffness;                      // k = p / h [Pa/m]
+  T compliance2;                    // 2 / k: peak separation per unit strength [m/Pa]
+  T op, ot, inv_op, inv_ot;         // normal peak opening and softening length [m]
+  T sp0, st0, inv_sp0, inv_st0;     // shear peak slip and softening length at f_s = c (no confinement)
+  Mask short_normal, short_shear0;  // an energy_exact length was floored
+};
+
+template <class T>
+struct Point {
+  using Mask = typename Lanes<T>::Mask;
+  T sigma;                    // normal traction, tension positive [Pa]
+  T tau;                      // shear traction magnitude (acts along the sliding direction) [Pa], >= 0
+  T tau_per_slip;             // tau / s, finite at s = 0: the traction vector is sigma n + this x sv
+  T d_max;                    // updated history in [0, 1]; 1 = this point has failed
+  T energy;                   // stored energy per unit area [J/m2]
+  T normal_part, shear_part;  // Dn^2 and Ds^2: which mode drives the damage (break classification)
+  T residual_cap;             // damaged and compressed: (1 - z) mu_res |sigma| (residual_friction())
+  Mask short_shear;           // the shear softening length was floored at this confinement
+};
+
+}  // namespace joint_law
+
+using JointMaterial = joint_law::Material<double>;
+using JointScales = joint_law::Scales<double>;
+using JointPointResponse = joint_law::Point<double>;
 
 // When an energy_exact length comes out <= 0 (G too small for this p and h), it is replaced by this
 // fraction of the peak separation: practically a brittle drop right after the peak. The event is counted
 // (JointStatus::short_softening); joint_min_penalty in softening.hpp tells the user what p would do.
 inline constexpr double kBrittleSofteningFraction = 1e-3;
 
-// What depends on the joint (h, material) but not on the point; the inverses spare per-point divisions.
-struct JointScales {
-  double stiffness;                   // k = p / h [Pa/m]
-  double compliance2;                 // 2 / k: peak separation per unit strength [m/Pa]
-  double op, ot, inv_op, inv_ot;      // normal peak opening and softening length [m]
-  double sp0, st0, inv_sp0, inv_st0;  // shear peak slip and softening length at f_s = c (no confinement)
-  bool short_normal, short_shear0;    // an energy_exact length was floored
-};
+namespace joint_law {
 
-// Softening length, floored (and flagged) when energy_exact has none; see kBrittleSofteningFraction.
-inline double floored_length(Softening rule, double f, double peak, double G, double Z, bool& short_length) {
-  const double L = softening_length(rule, f, peak, G, Z);
-  short_length = !(L > 0.0);
-  return short_length ? kBrittleSofteningFraction * peak : L;
+// The softening length (softening.hpp), floored, and flagged in short_length, where energy_exact has none.
+template <class T>
+[[gnu::always_inline]] inline T floored_length(Softening rule, T f, T peak, T G, double Z,
+                                               typename Lanes<T>::Mask& short_length) {
+  using L = Lanes<T>;
+  const T length = softening_length(rule, f, peak, G, Z, L::max);
+  short_length = L::not_positive(length);
+  return L::select(short_length, kBrittleSofteningFraction * peak, length);
 }
 
-inline JointScales joint_scales(const JointMaterial& m, double h, Softening rule, double Z) {
-  JointScales k;
+template <class T>
+[[gnu::always_inline]] inline Scales<T> scales(const Material<T>& m, T h, Softening rule, double Z) {
+  Scales<T> k;
   k.stiffness = m.penalty / h;
   k.compliance2 = 2.0 * h / m.penalty;
   k.op = m.tensile_strength * k.compliance2;
@@ -100,75 +164,87 @@ inline JointScales joint_scales(const JointMaterial& m, double h, Softening rule
   return k;
 }
 
-struct JointPointResponse {
-  double sigma;                    // normal traction, tension positive [Pa]
-  double tau;                      // shear traction magnitude (acts along the sliding direction) [Pa], >= 0
-  double tau_per_slip;             // tau / s, finite at s = 0: the traction vector is sigma n + this x sv
-  double d_max;                    // updated history in [0, 1]; 1 = this point has failed
-  double energy;                   // stored energy per unit area [J/m2]
-  double normal_part, shear_part;  // Dn^2 and Ds^2: which mode drives the damage (break classification)
-  double residual_cap;             // damaged and compressed: (1 - z) mu_res |sigma| (residual_friction())
-  bool short_shear;                // the shear softening length was floored at this confinement
-};
+// The point law (the header's comment): o the opening, s the slip, d_max the point's history.
+template <class T>
+inline Point<T> point(const Material<T>& m, const Scales<T>& k, Softening rule, double Z, T o, T s, T d_max) {
+  using L = Lanes<T>;
+  const T zero = L::splat(0.0);
+  // Normal compression first: it raises the shear strength (Mohr-Coulomb).
+  const auto comp = L::less(o, zero);
+  const T sigma_c = L::keep(comp, k.stiffness * o);
+  const bool any_comp = L::any(comp);
+  const T fs = any_comp ? L::select(comp, m.cohesion - sigma_c * m.tan_friction, m.cohesion) : m.cohesion;
+  const T sp = any_comp ? L::select(comp, fs * k.compliance2, k.sp0) : k.sp0;
+  const T inv_sp = any_comp ? L::select(comp, 1.0 / sp, k.inv_sp0) : k.inv_sp0;
+  // The confined softening length costs two divisions and matters only past the peak slip or once damaged;
+  // a compressed point has Dn = 0, so it is needed exactly where s > sp or D_max > 0, known before D.
+  T st = k.st0, inv_st = k.inv_st0;
+  auto short_confined = L::none();
+  const auto needed = L::both(comp, L::either(L::greater(s, sp), L::greater(d_max, zero)));
+  if (L::any(needed)) {
+    const T st_confined = floored_length(rule, fs, sp, m.G_II, Z, short_confined);
+    st = L::select(comp, st_confined, k.st0);
+    inv_st = L::select(comp, 1.0 / st_confined, k.inv_st0);
+  }
+
+  Point<T> r;
+  const T Dn = L::keep(L::greater(o, k.op), (o - k.op) * k.inv_ot);
+  const T Ds = L::keep(L::greater(s, sp), (s - sp) * inv_st);
+  r.normal_part = Dn * Dn;
+  r.shear_part = Ds * Ds;
+  const auto mixed = L::both(L::greater(Dn, zero), L::greater(Ds, zero));
+  T D = Dn + Ds;  // the square root (long latency) only where both modes are active
+  if (L::any(mixed)) D = L::select(mixed, L::sqrt(r.normal_part + r.shear_part), D);
+  const T De = L::min(L::max(D, d_max), L::splat(1.0));
+  r.d_max = De;
+  r.short_shear = L::select(needed, short_confined, k.short_shear0);
+  r.residual_cap = zero;
+
+  // Intact, D_eff = 0: the hardening curves, nonlinear elastic.
+  const T x = o * k.inv_op;
+  r.sigma = L::select(comp, sigma_c, m.tensile_strength * x * (2.0 - x));
+  const T normal_energy =
+      L::select(comp, 0.5 * sigma_c * o, m.tensile_strength * k.op * x * x * (1.0 - x / 3.0));
+  const T y = s * inv_sp;
+  r.tau_per_slip = fs * (2.0 - y) * inv_sp;
+  r.tau = r.tau_per_slip * s;
+  r.energy = normal_energy + fs * sp * y * y * (1.0 - y / 3.0);
+  const auto intact = L::equal(De, zero);
+  if (L::all(intact)) return r;
+
+  // Damaged, D_eff > 0: the secant form.
+  const T z = L::softening_z(De);
+  const T sigma = L::select(comp, sigma_c, z * m.tensile_strength / (k.op + De * k.ot) * o);
+  const T tau_per_slip = z * fs / (sp + De * st);
+  const T tau = tau_per_slip * s;
+  r.sigma = L::select(intact, r.sigma, sigma);
+  r.tau_per_slip = L::select(intact, r.tau_per_slip, tau_per_slip);
+  r.tau = L::select(intact, r.tau, tau);
+  r.energy = L::select(intact, r.energy, 0.5 * (sigma * o + tau * s));
+  r.residual_cap = L::select(intact, zero, L::keep(comp, (1.0 - z) * m.residual_friction * (zero - sigma_c)));
+  return r;
+}
+
+// The kernels take sigma and tau / s as finished values before forming the traction sigma n + (tau / s) sv:
+// the empty asm statement (no instruction) keeps the compiler from folding the law's last operations into
+// the traction's multiply-adds where the law is inlined, which moves about half the joints' forces by an
+// ulp and with them every state hash (scripts/state_hashes.py). With it the rounding is the same whether
+// or not the law is inlined.
+template <class T>
+[[gnu::always_inline]] inline void settle_tractions(Point<T>& r) {
+  asm("" : "+x"(r.sigma), "+x"(r.tau_per_slip));
+}
+
+}  // namespace joint_law
+
+// The scalar reference (tests, the scalar kernel, the joints a vector group hands back).
+inline JointScales joint_scales(const JointMaterial& m, double h, Softening rule, double Z) {
+  return joint_law::scales(m, h, rule, Z);
+}
 
 inline JointPointResponse joint_point_response(const JointMaterial& m, const JointScales& k, Softening rule,
                                                double Z, double o, double s, double d_max) {
-  JointPointResponse r{};
-  // Normal compression first: it raises the shear strength.
-  const double sigma_c = o < 0.0 ? k.stiffness * o : 0.0;
-  double fs = m.cohesion, sp = k.sp0, st = k.st0, inv_sp = k.inv_sp0, inv_st = k.inv_st0;
-  r.short_shear = k.short_shear0;
-  // The confined softening length costs two divisions and only matters past the peak slip or once damaged,
-  // so it is computed when first needed (and only then checked for being too short).
-  bool confined_length_pending = false;
-  if (sigma_c < 0.0) {
-    fs = m.cohesion - sigma_c * m.tan_friction;
-    sp = fs * k.compliance2;
-    inv_sp = 1.0 / sp;
-    confined_length_pending = true;
-  }
-  auto confined_length = [&] {
-    if (!confined_length_pending) return;
-    st = floored_length(rule, fs, sp, m.G_II, Z, r.short_shear);
-    inv_st = 1.0 / st;
-    confined_length_pending = false;
-  };
-  const double Dn = o > k.op ? (o - k.op) * k.inv_ot : 0.0;
-  double Ds = 0.0;
-  if (s > sp) {
-    confined_length();
-    Ds = (s - sp) * inv_st;
-  }
-  r.normal_part = Dn * Dn;
-  r.shear_part = Ds * Ds;
-  const double D = (Dn > 0.0 && Ds > 0.0) ? std::sqrt(r.normal_part + r.shear_part) : Dn + Ds;
-  const double De = std::min(1.0, std::max(D, d_max));
-  r.d_max = De;
-
-  if (De == 0.0) {  // intact: the hardening curves, nonlinear elastic
-    if (o < 0.0) {
-      r.sigma = sigma_c;
-      r.energy = 0.5 * sigma_c * o;
-    } else {
-      const double x = o * k.inv_op;
-      r.sigma = m.tensile_strength * x * (2.0 - x);
-      r.energy = m.tensile_strength * k.op * x * x * (1.0 - x / 3.0);
-    }
-    const double y = s * inv_sp;
-    r.tau_per_slip = fs * (2.0 - y) * inv_sp;
-    r.tau = r.tau_per_slip * s;
-    r.energy += fs * sp * y * y * (1.0 - y / 3.0);
-    return r;
-  }
-
-  confined_length();
-  const double z = softening_z(De);
-  r.sigma = o < 0.0 ? sigma_c : z * m.tensile_strength / (k.op + De * k.ot) * o;
-  r.tau_per_slip = z * fs / (sp + De * st);
-  r.tau = r.tau_per_slip * s;
-  r.energy = 0.5 * (r.sigma * o + r.tau * s);
-  if (sigma_c < 0.0) r.residual_cap = (1.0 - z) * m.residual_friction * (-sigma_c);
-  return r;
+  return joint_law::point(m, k, rule, Z, o, s, d_max);
 }
 
 // Residual friction at one damaged point (femdem.md 1b, the Y hydro variant's tau -> mu_res |sigma|): a

@@ -41,10 +41,15 @@ double softening_integral();
 
 // Softening length L of one mode for strength f, peak separation sp and fracture energy G (see above).
 // energy_exact may return L <= 0 (G too small for this penalty and element size): the caller decides.
-// Z is softening_integral(), passed in so hot loops do not touch the cached static.
-inline double softening_length(Softening rule, double f, double sp, double G, double Z) {
-  if (rule == Softening::y_compatible) return std::fmax(2.0 * sp, 3.0 * G / f);
+// Z is softening_integral(), passed in so hot loops do not touch the cached static. For any lane type T
+// (the joint law's, kernels/joint_law.hpp) with its max.
+template <class T, class Max>
+inline T softening_length(Softening rule, T f, T sp, T G, double Z, Max max) {
+  if (rule == Softening::y_compatible) return max(2.0 * sp, 3.0 * G / f);
   return (G - (2.0 / 3.0) * f * sp) / (f * Z);
+}
+inline double softening_length(Softening rule, double f, double sp, double G, double Z) {
+  return softening_length(rule, f, sp, G, Z, [](double a, double b) { return std::fmax(a, b); });
 }
 
 // Smallest penalty p for which energy_exact has a positive softening length: (2/3) f (2 h f / p) < G

@@ -20,24 +20,39 @@
 
 namespace rift::kernels {
 
+// The joint law's lane operations on four joints (joint_law.hpp).
+template <>
+struct joint_law::Lanes<V4> {
+  using Mask = V4;  // all bits set in the lanes where the condition holds
+  static V4 splat(double a) { return _mm256_set1_pd(a); }
+  static V4 none() { return _mm256_setzero_pd(); }
+  static V4 less(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
+  static V4 greater(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+  static V4 equal(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }
+  static V4 not_positive(V4 a) { return _mm256_cmp_pd(a, _mm256_setzero_pd(), _CMP_NGT_UQ); }  // NaN too
+  static V4 both(V4 a, V4 b) { return _mm256_and_pd(a, b); }
+  static V4 either(V4 a, V4 b) { return _mm256_or_pd(a, b); }
+  static bool any(V4 m) { return _mm256_movemask_pd(m) != 0; }
+  static bool all(V4 m) { return _mm256_movemask_pd(m) == 0xF; }
+  static V4 select(V4 m, V4 if_true, V4 if_false) { return simd::select(m, if_true, if_false); }
+  static V4 keep(V4 m, V4 a) { return simd::keep(m, a); }
+  static V4 sqrt(V4 a) { return _mm256_sqrt_pd(a); }
+  static V4 max(V4 a, V4 b) { return _mm256_max_pd(a, b); }
+  static V4 min(V4 a, V4 b) { return _mm256_min_pd(a, b); }
+  // z(D) lane by lane with the scalar function: the exp is only evaluated for damaged points.
+  static V4 softening_z(V4 D) {
+    alignas(32) double lane_D[4], lane_z[4];
+    _mm256_store_pd(lane_D, D);
+    for (int l = 0; l < 4; ++l) lane_z[l] = kernels::softening_z(lane_D[l]);
+    return _mm256_load_pd(lane_z);
+  }
+};
+
 namespace {
 
-inline V4 set1(double a) {
-  return _mm256_set1_pd(a);
-}
-inline V4 less(V4 a, V4 b) {
-  return _mm256_cmp_pd(a, b, _CMP_LT_OQ);
-}
-inline V4 greater(V4 a, V4 b) {
-  return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
-}
-inline V4 both(V4 a, V4 b) {
-  return _mm256_and_pd(a, b);
-}
-inline V4 either(V4 a, V4 b) {
-  return _mm256_or_pd(a, b);
-}
-inline int lanes(V4 mask) {
+using L = joint_law::Lanes<V4>;
+
+inline int lanes(V4 mask) {  // one bit per lane
   return _mm256_movemask_pd(mask);
 }
 
@@ -78,45 +93,13 @@ void load_geometry(const JointArgs& a, const size_t joint[4], GeometryV& g) {
   const V4 c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                    e1[0] * e2[1] - e1[1] * e2[0]};
   const V4 twice_area = _mm256_sqrt_pd(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-  g.ok = both(greater(twice_area, set1(0.0)), less(twice_area, set1(HUGE_VAL)));
+  g.ok = L::both(L::greater(twice_area, L::splat(0.0)), L::less(twice_area, L::splat(HUGE_VAL)));
   const V4 inv = simd::keep(g.ok, 1.0 / twice_area);
   for (int k = 0; k < 3; ++k) g.n[k] = c[k] * inv;
   g.area = 0.5 * twice_area;
   auto len2 = [](const V4 e[3]) { return e[0] * e[0] + e[1] * e[1] + e[2] * e[2]; };
   g.h = _mm256_sqrt_pd(_mm256_min_pd(_mm256_min_pd(len2(e1), len2(e2)), len2(e3)));
 }
-
-}  // namespace
-
-// The joint law's lane operations on four joints (joint_law.hpp).
-template <>
-struct joint_law::Lanes<V4> {
-  using Mask = V4;  // all bits set in the lanes where the condition holds
-  static V4 splat(double a) { return _mm256_set1_pd(a); }
-  static V4 none() { return _mm256_setzero_pd(); }
-  static V4 less(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
-  static V4 greater(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
-  static V4 equal(V4 a, V4 b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }
-  static V4 not_positive(V4 a) { return _mm256_cmp_pd(a, _mm256_setzero_pd(), _CMP_NGT_UQ); }  // NaN too
-  static V4 both(V4 a, V4 b) { return _mm256_and_pd(a, b); }
-  static V4 either(V4 a, V4 b) { return _mm256_or_pd(a, b); }
-  static bool any(V4 m) { return _mm256_movemask_pd(m) != 0; }
-  static bool all(V4 m) { return _mm256_movemask_pd(m) == 0xF; }
-  static V4 select(V4 m, V4 if_true, V4 if_false) { return simd::select(m, if_true, if_false); }
-  static V4 keep(V4 m, V4 a) { return simd::keep(m, a); }
-  static V4 sqrt(V4 a) { return _mm256_sqrt_pd(a); }
-  static V4 max(V4 a, V4 b) { return _mm256_max_pd(a, b); }
-  static V4 min(V4 a, V4 b) { return _mm256_min_pd(a, b); }
-  // z(D) lane by lane with the scalar function: the exp is only evaluated for damaged points.
-  static V4 softening_z(V4 D) {
-    alignas(32) double lane_D[4], lane_z[4];
-    _mm256_store_pd(lane_D, D);
-    for (int l = 0; l < 4; ++l) lane_z[l] = kernels::softening_z(lane_D[l]);
-    return _mm256_load_pd(lane_z);
-  }
-};
-
-namespace {
 
 using MaterialV = joint_law::Material<V4>;
 using ScalesV = joint_law::Scales<V4>;
@@ -148,14 +131,14 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
   const size_t P = static_cast<size_t>(rule.points);
   double* history[4];
   for (int l = 0; l < 4; ++l) history[l] = &a.d_max[P * joint[l]];
-  const V4 zero = set1(0.0);
+  const V4 zero = L::splat(0.0);
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 3; ++c) t.F[i][c] = zero;
   t.mean_o = t.mean_s = t.energy = t.damage = t.normal = t.shear = t.failed = zero;
   t.short_any = k.short_normal;
   t.slider = zero;
   t.damage_onsets = 0;
-  const V4 has_friction = greater(m.residual_friction, zero);
+  const V4 has_friction = L::greater(m.residual_friction, zero);
   for (size_t q = 0; q < P; ++q) {
     const double N0 = rule.N[q][0], N1 = rule.N[q][1], N2 = rule.N[q][2], w = rule.w[q];
     V4 d[3], sv[3];
@@ -172,9 +155,9 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
       t.damage_onsets += history[l][q] == 0.0 && updated[l] > 0.0;
       history[l][q] = updated[l];
     }
-    t.failed += simd::keep(_mm256_cmp_pd(r.d_max, set1(1.0), _CMP_GE_OQ), set1(1.0));
-    t.short_any = either(t.short_any, r.short_shear);
-    t.slider = either(t.slider, both(has_friction, greater(r.d_max, zero)));
+    t.failed += simd::keep(_mm256_cmp_pd(r.d_max, L::splat(1.0), _CMP_GE_OQ), L::splat(1.0));
+    t.short_any = L::either(t.short_any, r.short_shear);
+    t.slider = L::either(t.slider, L::both(has_friction, L::greater(r.d_max, zero)));
     t.normal += r.normal_part;
     t.shear += r.shear_part;
     t.damage = _mm256_max_pd(t.damage, r.d_max);
@@ -197,7 +180,7 @@ void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointS
   status.damage_onsets += t.damage_onsets;
   if (!a.opening.empty()) simd::store1(t.mean_o, a.opening.data() + j0, count);
   if (!a.slip.empty()) simd::store1(t.mean_s, a.slip.data() + j0, count);
-  const V4 breaks = _mm256_cmp_pd(t.failed, set1(a.rule->fail_count), _CMP_GE_OQ);
+  const V4 breaks = _mm256_cmp_pd(t.failed, L::splat(a.rule->fail_count), _CMP_GE_OQ);
   const V4 intact = _mm256_xor_pd(breaks, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
   V4 f[9];  // side B's corners; side A's are minus these and not stored
   for (int i = 0; i < 3; ++i)
@@ -208,7 +191,8 @@ void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointS
   alignas(32) double last[4];
   _mm256_store_pd(last, f[8]);
   for (int l = 0; l < count; ++l) out[9 * l + 8] = last[l];
-  if (!a.damage.empty()) simd::store1(simd::select(breaks, set1(1.0), t.damage), a.damage.data() + j0, count);
+  if (!a.damage.empty())
+    simd::store1(simd::select(breaks, L::splat(1.0), t.damage), a.damage.data() + j0, count);
   if (!a.stored_energy.empty())
     simd::store1(simd::keep(intact, t.energy), a.stored_energy.data() + j0, count);
   const int broke = lanes(breaks) & real;
@@ -240,7 +224,7 @@ void process_group(const JointArgs& a, const size_t joint[4], int count, double 
   // through the scalar path from its state before this call. Damaged joints are few, and a group without
   // residual friction (most scenes) saves nothing.
   const int real = (1 << count) - 1;
-  const bool may_slide = (lanes(greater(m.residual_friction, set1(0.0))) & real) != 0;
+  const bool may_slide = (lanes(L::greater(m.residual_friction, L::splat(0.0))) & real) != 0;
   const size_t P = static_cast<size_t>(a.rule->points);
   double saved[4][kMaxJointPoints];
   if (may_slide)

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "kernels/tet_intersection.hpp"
+#include "kernels/tet_point_location.hpp"
 
 namespace rift::kernels {
 
@@ -107,26 +108,6 @@ void gather_to_solid_nodes(std::span<const CouplingPair> pairs, std::span<const 
   }
 }
 
-namespace {
-// Barycentric coordinates of point q in the tet with corners c (Cramer's rule on [c1-c0, c2-c0, c3-c0]).
-void barycentric(const double c[4][3], const double* q, double lambda[4]) {
-  double e[3][3], r[3];
-  for (int d = 0; d < 3; ++d) {
-    for (int a = 0; a < 3; ++a) e[a][d] = c[a + 1][d] - c[0][d];
-    r[d] = q[d] - c[0][d];
-  }
-  auto det3 = [](const double u[3], const double v[3], const double w[3]) {
-    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-           u[2] * (v[0] * w[1] - v[1] * w[0]);
-  };
-  const double det = det3(e[0], e[1], e[2]);
-  lambda[1] = det3(r, e[1], e[2]) / det;
-  lambda[2] = det3(e[0], r, e[2]) / det;
-  lambda[3] = det3(e[0], e[1], r) / det;
-  lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
-}
-}  // namespace
-
 size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const int32_t> fluid_tet_nodes,
                                 std::span<const double> field, std::span<const double> points,
                                 std::span<const CouplingPair> candidates, std::span<double> out,
@@ -140,7 +121,7 @@ size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const
       const size_t t = static_cast<size_t>(candidates[p].solid);
       double c[4][3], lambda[4];
       corners(fluid_x, fluid_tet_nodes, static_cast<int32_t>(t), c);
-      barycentric(c, &points[3 * k], lambda);
+      tet_barycentric(c, &points[3 * k], lambda);
       const double low = std::min(std::min(lambda[0], lambda[1]), std::min(lambda[2], lambda[3]));
       if (low > best) {
         best = low;

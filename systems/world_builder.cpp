@@ -13,6 +13,7 @@
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/fracture_flow/fracture_flow_model.hpp"
 #include "systems/mesh_conversion_model.hpp"
+#include "systems/probe_model.hpp"
 #include "systems/solid_model.hpp"
 
 namespace rift {
@@ -113,6 +114,8 @@ std::unique_ptr<World> build_world(const Scene& scene) {
     world->models.push_back(std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
   }
   if (scene.solid && scene.output.surface && !conversion) add_conversion();
+  if (!scene.probes.empty())  // last: it reads what the others created
+    world->models.push_back(std::make_unique<ProbeModel>(world->store, scene.probes));
   return world;
 }
 

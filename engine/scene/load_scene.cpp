@@ -123,6 +123,13 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
   MapReader checkpoint = doc.section("checkpoint", false);
   scene.checkpoint = read_checkpoint_section(checkpoint);
   for (MapReader& m : doc.section_list("reference", 0)) scene.reference.push_back(read_reference_metric(m));
+  for (MapReader& m : doc.section_list("probes", 0)) {
+    scene.probes.push_back(read_probe(m, has_solid, has_fluid));
+    const std::string& name = scene.probes.back().name;
+    if (std::count_if(scene.probes.begin(), scene.probes.end(),
+                      [&](const ProbeSpec& q) { return q.name == name; }) > 1)
+      m.error("name", "a name no other probe has", "'" + name + "' is taken");
+  }
   doc.finish();
   return scene;
 }

@@ -136,7 +136,6 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
     MapReader unused = sec.unused().section("adapt", false);
     read_adapt(unused);
   }
-  f.ghia_cavity = sec.boolean("ghia_cavity", false);
   sec.finish();
   return f;
 }

@@ -304,7 +304,6 @@ void emit_fluid(Lines& o, const FluidSpec& f) {
     }
     if (b.kind == Kind::velocity || b.kind == Kind::pressure) emit_time_function(o, 3, "value", b.function);
   }
-  o.line(1, "ghia_cavity", f.ghia_cavity ? "true" : "false");
 }
 
 void emit_output(Lines& o, const OutputSpec& out) {
@@ -390,6 +389,22 @@ void emit_reference(Lines& o, const std::vector<ReferenceMetricSpec>& reference)
   }
 }
 
+void emit_probes(Lines& o, const std::vector<ProbeSpec>& probes) {
+  if (probes.empty()) return;
+  o.line(0, "probes");
+  for (const auto& p : probes) {
+    o.item(1, "name", quoted(p.name));
+    o.line(2, "field", p.field);
+    o.line(2, "component", p.component);
+    o.line(2, "factor", yaml_real(p.factor));
+    o.line(2, "points");
+    for (const auto& q : p.points) {
+      o.item(3, "at", vec3(q.at));
+      if (q.value) o.line(4, "value", yaml_real(*q.value));
+    }
+  }
+}
+
 }  // namespace
 
 std::string emit_resolved_yaml(const Scene& scene) {
@@ -407,6 +422,7 @@ std::string emit_resolved_yaml(const Scene& scene) {
   emit_output(o, scene.output);
   emit_checkpoint(o, scene.checkpoint);
   emit_reference(o, scene.reference);
+  emit_probes(o, scene.probes);
   return std::move(o.text());
 }
 

@@ -267,9 +267,6 @@ struct FluidSpec {
   std::array<double, 3> initial_velocity{};  // [m/s], then the boundary values on Dirichlet nodes
   double initial_pressure = 0.0;             // [Pa], uniform at t = 0
   std::vector<FluidBoundarySpec> boundaries;
-  // Compare the steady centre lines with Ghia et al. (1982) Re = 100 (a unit-square cavity, lid speed 1):
-  // summary metrics.fluid.ghia_max_error.
-  bool ghia_cavity = false;
 };
 
 // The two-way fluid-solid coupling (systems/coupling, docs/coupling.md): the solid immersed in the fluid
@@ -385,6 +382,20 @@ struct ReferenceMetricSpec {
   std::optional<double> value;  // the analytic answer; absent: a sweep compares with its finest variant
 };
 
+// A gauge: a field read at fixed points (`probes` section), each a time-series column, with its final
+// values and, where the scene gives known values, their errors in summary.json.
+struct ProbePointSpec {
+  std::array<double, 3> at{};   // [m]: fluid probes in space, solid probes in the reference configuration
+  std::optional<double> value;  // the known value of factor x the reading here (a table, a lab gauge)
+};
+struct ProbeSpec {
+  std::string name;
+  std::string field;      // "<model>.<field>", one of probe_fields()
+  std::string component;  // one of the field's components (probe_fields())
+  double factor = 1.0;    // the probe reads factor x the field (e.g. 1 / lid speed)
+  std::vector<ProbePointSpec> points;
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -398,6 +409,7 @@ struct Scene {
   OutputSpec output;
   CheckpointSpec checkpoint;
   std::vector<ReferenceMetricSpec> reference;  // empty: the scene names no error metrics
+  std::vector<ProbeSpec> probes;               // empty: no gauges
   std::string resolved_yaml;                   // the complete scene (defaults filled, overrides applied)
   // FNV-1a 64 of resolved_yaml followed by the content hash of every mesh file it names, 16 hex digits
   // (stable across runs): a mesh file replaced at the same path makes another scene.

@@ -27,5 +27,7 @@ FractureFlowSpec read_fracture_flow_section(MapReader& sec, bool pressure_from_f
 OutputSpec read_output_section(MapReader& sec);
 CheckpointSpec read_checkpoint_section(MapReader& sec);
 ReferenceMetricSpec read_reference_metric(MapReader& sec);
+// One item of `probes` (read_probes_section.cpp); its field must belong to a model the scene has.
+ProbeSpec read_probe(MapReader& sec, bool has_solid, bool has_fluid);
 
 }  // namespace rift

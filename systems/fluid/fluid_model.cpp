@@ -80,19 +80,6 @@ fluid::FluidSettings settings_for(const FluidSpec& spec) {
   return s;
 }
 
-// Ghia, Ghia & Shin (1982), Re = 100: u on x = 1/2 at kGhiaY, v on y = 1/2 at kGhiaX (17 points each,
-// the two ends being the walls).
-constexpr double kGhiaY[17] = {1.0,    0.9766, 0.9688, 0.9609, 0.9531, 0.8516, 0.7344, 0.6172, 0.5,
-                               0.4531, 0.2813, 0.1719, 0.1016, 0.0703, 0.0625, 0.0547, 0.0};
-constexpr double kGhiaU[17] = {1.0,      0.84123,  0.78871,  0.73722,  0.68717,  0.23151,
-                               0.00332,  -0.13641, -0.20581, -0.2109,  -0.15662, -0.1015,
-                               -0.06434, -0.04775, -0.04192, -0.03717, 0.0};
-constexpr double kGhiaX[17] = {1.0,    0.9688, 0.9609, 0.9531, 0.9453, 0.9063, 0.8594, 0.8047, 0.5,
-                               0.2344, 0.2266, 0.1563, 0.0938, 0.0781, 0.0703, 0.0625, 0.0};
-constexpr double kGhiaV[17] = {0.0,      -0.05906, -0.07391, -0.08864, -0.10313, -0.16914,
-                               -0.22445, -0.24533, 0.05454,  0.17527,  0.17507,  0.16077,
-                               0.12317,  0.1089,   0.10091,  0.09233,  0.0};
-
 }  // namespace
 
 FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec, int64_t substeps,
@@ -366,12 +353,6 @@ void FluidModel::summarize(nlohmann::json& summary) const {
                     {"divergence_l2", v("divergence_l2")},
                     {"divergence_max", v("divergence_max")},
                     {"cfl", v("cfl")}};
-  if (spec_.ghia_cavity) {
-    const GhiaErrors g = ghia_errors();
-    s["ghia_max_du"] = g.max_du;
-    s["ghia_max_dv"] = g.max_dv;
-    s["ghia_max_error"] = g.max();
-  }
 }
 
 int64_t FluidModel::mesh_revision() const {
@@ -390,61 +371,6 @@ void FluidModel::restored(const StepContext& at) {
                          previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{},
                          store_.table(fluid::tet_table).span<const double>("pressure_subscale"));
   step_->restore_report();
-}
-
-GhiaErrors FluidModel::ghia_errors() const {
-  const auto x = solver_->nodes();
-  const auto u = solver_->velocity();
-  const auto conn = solver_->tets();
-  const size_t nn = solver_->node_count(), nt = conn.size() / 4;
-  std::array<double, 3> lo, hi;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
-  for (size_t n = 0; n < nn; ++n)
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], x[3 * n + d]);
-      hi[d] = std::max(hi[d], x[3 * n + d]);
-    }
-  double lid = 0.0;
-  for (const auto& b : spec_.boundaries)
-    if (b.kind == FluidBoundarySpec::Kind::velocity) {
-      const double s = b.function(solver_->time());
-      lid = std::hypot(s * b.direction[0], s * b.direction[1], s * b.direction[2]);
-      break;
-    }
-  if (lid == 0.0) lid = 1.0;
-  // P1 interpolation at a point: the tet whose barycentric coordinates are all >= -eps.
-  auto sample = [&](const std::array<double, 3>& p, int comp) {
-    double best = -std::numeric_limits<double>::infinity(), value = 0.0;
-    for (size_t t = 0; t < nt; ++t) {
-      const int32_t* n = &conn[4 * t];
-      double lam[4], lmin = 1.0;
-      double sum = 0.0;
-      for (int a = 1; a < 4; ++a) {
-        double l = 0.0;
-        for (int d = 0; d < 3; ++d) l += grad_[12 * t + 3 * a + d] * (p[d] - x[3 * n[0] + d]);
-        lam[a] = l;
-        sum += l;
-      }
-      lam[0] = 1.0 - sum;
-      for (double l : lam) lmin = std::min(lmin, l);
-      if (lmin > best) {
-        best = lmin;
-        value = 0.0;
-        for (int a = 0; a < 4; ++a) value += lam[a] * u[3 * static_cast<size_t>(n[a]) + comp];
-        if (lmin >= -1e-12) break;
-      }
-    }
-    return value;
-  };
-  GhiaErrors e;
-  for (int k = 1; k < 16; ++k) {
-    const std::array<double, 3> pu{lo[0] + 0.5 * (hi[0] - lo[0]), lo[1] + kGhiaY[k] * (hi[1] - lo[1]), lo[2]};
-    e.max_du = std::max(e.max_du, std::abs(sample(pu, 0) / lid - kGhiaU[k]));
-    const std::array<double, 3> pv{lo[0] + kGhiaX[k] * (hi[0] - lo[0]), lo[1] + 0.5 * (hi[1] - lo[1]), lo[2]};
-    e.max_dv = std::max(e.max_dv, std::abs(sample(pv, 1) / lid - kGhiaV[k]));
-  }
-  return e;
 }
 
 }  // namespace rift

@@ -18,12 +18,6 @@
 
 namespace rift {
 
-// Centre-line errors against Ghia et al. (1982), Re = 100, on a unit-square cavity.
-struct GhiaErrors {
-  double max_du = 0.0, max_dv = 0.0;  // max over the table's 15 interior points, in units of the lid speed
-  double max() const { return std::max(max_du, max_dv); }
-};
-
 class FluidModel : public Model {
  public:
   // Throws rift::Error naming the scene key when the scene and the mesh disagree (unknown surface, a
@@ -65,9 +59,6 @@ class FluidModel : public Model {
   // 1/2 rho sum_n V_n |u_n|^2 (lumped) [J], of the stored velocity (what the run loop may read: with the
   // concurrent coupling the solver's own may be mid-step).
   double kinetic_energy() const;
-  // The centre lines x = 1/2 (u) and y = 1/2 (v) of the mesh's bounding box at its zmin plane, lengths
-  // scaled to the unit square and velocities by the speed of the first velocity boundary.
-  GhiaErrors ghia_errors() const;
 
  private:
   void cell_fields();                      // divergence_ and cfl_ from the current velocity

@@ -11,8 +11,10 @@
 
 #include <CLI/Version.hpp>
 #include <Eigen/Core>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -34,6 +36,20 @@
 namespace rift::cli {
 
 namespace {
+
+// The per-grid XDMF files a run wrote (rift_solid.xdmf, rift_fluid.xdmf, ...), in name order, each
+// followed by a space: the ones ParaView opens one grid at a time.
+std::string grid_files(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with("rift_") && entry.path().extension() == ".xdmf") names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  std::string out;
+  for (const auto& n : names) out += n + " ";
+  return out;
+}
 
 // Reads the scene (or the built-in default); prints every diagnostic and returns nullopt on errors.
 std::optional<Scene> read_scene(const SceneArgs& args) {
@@ -93,9 +109,8 @@ int run(const RunArgs& args, const WorldBuilder& build) {
   std::signal(SIGTERM, on_signal);
   try {
     const RunResult r = sim->run();
-    std::cout << "output: " << options.out_dir.string()
-              << "/rift_solid.xdmf (open in ParaView; rift.xdmf holds "
-              << "every grid), summary.json, timeseries.csv\n";
+    std::cout << "output: " << options.out_dir.string() << "/: " << grid_files(options.out_dir)
+              << "(open in ParaView; rift.xdmf holds every grid), summary.json, timeseries.csv\n";
     print_run_report(options.out_dir);
     if (r.completed)
       for (const auto& m : read_reference_metrics(sim->scene().reference, options.out_dir)) {

@@ -1,17 +1,14 @@
 // fluid: incompressible Navier-Stokes (systems/fluid): material, time scheme, solver controls, body
 // force, initial velocity and boundary conditions on named mesh surfaces, optionally its own mesh.
+#include "engine/scene/scene_names.hpp"
 #include "engine/scene/scene_sections.hpp"
 
 namespace rift {
 namespace {
 
 // FluidBoundarySpec::Kind order.
-constexpr std::array<std::string_view, 5> kBoundaryTypes{"no_slip", "velocity", "free_slip", "pressure",
-                                                         "outflow"};
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 constexpr std::array<std::string_view, 2> kSchemes{"backward_euler", "crank_nicolson"};
-constexpr std::array<std::string_view, 2> kCouplings{"schur_gmres", "projection"};
-constexpr std::array<std::string_view, 2> kOnFailure{"stop", "continue"};
 constexpr std::array<std::string_view, 2> kSubscales{"quasi_static", "dynamic"};
 
 // fluid.adapt's own keys: how often the mesh is remade, and around which parts of the solid's surface.
@@ -38,13 +35,13 @@ FluidBoundarySpec read_boundary(MapReader& b) {
   using Kind = FluidBoundarySpec::Kind;
   FluidBoundarySpec bc;
   bc.surface = b.string("surface", std::nullopt);
-  bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
+  bc.kind = b.choice("type", scene_names::kFluidBoundary, std::optional<Kind>());
   if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
     for (auto key : {"direction", "value", "parabolic"}) b.declare(key);
     b.finish();
     return bc;
   }
-  const std::string for_type = "for type " + std::string(kBoundaryTypes[static_cast<size_t>(bc.kind)]);
+  const std::string for_type = "for type " + std::string(name_of(scene_names::kFluidBoundary, bc.kind));
   TimeFunction one;
   one.value = 1.0;
   if (bc.kind == Kind::velocity) {
@@ -94,11 +91,12 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
   f.convection = sec.boolean("convection", true);
   f.supg = sec.boolean("supg", true);
   f.dynamic_subscale = sec.choice("pressure_subscale", kSubscales, 0) == 1;
-  f.coupling = static_cast<FluidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
+  f.coupling =
+      sec.choice("coupling", scene_names::kPressureCoupling, std::optional(FluidSpec::Coupling::schur_gmres));
   f.picard_max_iterations = static_cast<int>(sec.integer("picard_max_iterations", IntRule{1, 1000}, 20));
   f.picard_tolerance = sec.real("picard_tolerance", positive(""), 1e-6);
-  f.on_picard_failure =
-      static_cast<FluidSpec::OnPicardFailure>(sec.choice("on_picard_failure", kOnFailure, 0));
+  f.on_picard_failure = sec.choice("on_picard_failure", scene_names::kOnPicardFailure,
+                                   std::optional(FluidSpec::OnPicardFailure::stop));
   f.velocity_tolerance = sec.real("velocity_tolerance", RealRule{"", 0.0, 1.0, true, true}, 1e-10);
   f.velocity_max_iterations =
       static_cast<int>(sec.integer("velocity_max_iterations", IntRule{1, 1000000}, 2000));
@@ -142,8 +140,7 @@ FluidSpec read_fluid_section(MapReader& sec, const std::string& base_dir) {
 
 FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   FluidSolidSpec c;
-  static constexpr std::array<std::string_view, 2> kForces{"volume", "wetted_faces"};
-  c.force = static_cast<FluidSolidSpec::Force>(sec.choice("force", kForces, 0));
+  c.force = sec.choice("force", scene_names::kCouplingForce, std::optional(FluidSolidSpec::Force::volume));
   c.substeps = sec.integer("substeps", IntRule{0, INT32_MAX}, 0);
   if (sec.has("relaxation_time")) {
     c.relaxation_time = sec.real("relaxation_time", positive("s"), std::nullopt);
@@ -157,8 +154,8 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
   }
   c.added_mass = sec.real("added_mass", non_negative(""), 0.0);
   c.dilatation = sec.boolean("dilatation", false);
-  static constexpr std::array<std::string_view, 2> kContinuity{"mixture", "fluid"};
-  c.continuity = static_cast<FluidSolidSpec::Continuity>(sec.choice("continuity", kContinuity, 0));
+  c.continuity =
+      sec.choice("continuity", scene_names::kContinuity, std::optional(FluidSolidSpec::Continuity::mixture));
   const auto inlet = [](auto&& r) { return r.vec3("network_inlet", any_real("m"), std::nullopt); };
   const auto extent = [](auto&& r) {
     return r.vec3("network_inlet_extent", non_negative("m"), std::array<double, 3>{});
@@ -172,8 +169,8 @@ FluidSolidSpec read_fluid_solid_section(MapReader& sec) {
                "it sizes the region around fluid_solid.network_inlet, which is absent");
     extent(sec.unused());  // its rule, for the scenes with a network_inlet
   }
-  static constexpr std::array<std::string_view, 2> kCouplings{"sequential", "concurrent"};
-  c.coupling = static_cast<FluidSolidSpec::Coupling>(sec.choice("coupling", kCouplings, 0));
+  c.coupling = sec.choice("coupling", scene_names::kWindowCoupling,
+                          std::optional(FluidSolidSpec::Coupling::sequential));
   sec.finish();
   return c;
 }

@@ -2,6 +2,7 @@
 #include <array>
 #include <string_view>
 
+#include "engine/scene/scene_names.hpp"
 #include "engine/scene/scene_sections.hpp"
 
 namespace rift {
@@ -16,8 +17,8 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f, bool pressure_from_flu
   spec.lag_pressure = f.real("lag_pressure", any_real("Pa"), 0.0);
   spec.initial_pressure = f.real("initial_pressure", any_real("Pa"), 0.0);
   spec.interval = f.integer("interval", IntRule{1, 1000000}, 1);
-  static constexpr std::array<std::string_view, 3> kSolvers{"automatic", "direct", "cg"};
-  spec.solver = int(f.choice("solver", kSolvers, 0));
+  spec.solver =
+      f.choice("solver", scene_names::kNetworkSolver, std::optional(FractureFlowSpec::Solver::automatic));
   spec.wet_damage = f.real("wet_damage", RealRule{"", 0.0, 1.0, true, false}, 1.0);
   if (f.ok("lag_pressure") && f.ok("bulk_modulus") && f.ok("reference_pressure") &&
       !(spec.lag_pressure > spec.reference_pressure - spec.bulk_modulus))

@@ -8,12 +8,12 @@
 #include "engine/mesh/borehole_box.hpp"
 #include "engine/mesh/msh_reader.hpp"
 #include "engine/scene/number_text.hpp"
+#include "engine/scene/scene_names.hpp"
 #include "engine/scene/scene_sections.hpp"
 
 namespace rift {
 namespace {
 
-constexpr std::array<std::string_view, 2> kShapes{"wedge", "slot"};  // NotchSpec::Shape order
 constexpr std::array<std::string_view, 6> kFaces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
 constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
 
@@ -47,7 +47,7 @@ void check_notch_fits(MapReader& n, const NotchSpec& notch, const MeshGenerateSp
 
 NotchSpec read_notch(MapReader& n, const MeshGenerateSpec& box, bool box_ok) {
   NotchSpec notch;
-  notch.shape = static_cast<NotchSpec::Shape>(n.choice("shape", kShapes, std::nullopt));
+  notch.shape = n.choice("shape", scene_names::kNotchShape, std::optional<NotchSpec::Shape>());
   const size_t face = n.choice("face", kFaces, std::nullopt);
   notch.face = std::string(kFaces[face]);
   notch.opening_axis = static_cast<int>(n.choice("opening_axis", kAxes, std::nullopt));

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "engine/scene/output_fields.hpp"
+#include "engine/scene/scene_names.hpp"
 #include "engine/scene/scene_sections.hpp"
 
 namespace rift {
@@ -43,7 +44,6 @@ CheckpointSpec read_checkpoint_section(MapReader& sec) {
 }
 
 ReferenceMetricSpec read_reference_metric(MapReader& sec) {
-  static constexpr std::array<std::string_view, 4> kReduce{"max", "min", "final", "max_abs"};
   ReferenceMetricSpec m;
   m.name = sec.string("name", std::nullopt);
   const bool series = sec.has("series"), summary = sec.has("summary");
@@ -55,7 +55,8 @@ ReferenceMetricSpec read_reference_metric(MapReader& sec) {
     m.summary = sec.string("summary", std::nullopt);
     if (sec.has("reduce")) sec.forbid("reduce", "'reduce' applies to a 'series' only");
   }
-  if (!summary) m.reduce = static_cast<ReferenceMetricSpec::Reduce>(sec.choice("reduce", kReduce, 0));
+  if (!summary)
+    m.reduce = sec.choice("reduce", scene_names::kReduce, std::optional(ReferenceMetricSpec::Reduce::max));
   m.factor = sec.real("factor", any_real(""), 1.0);
   m.value = sec.optional_real("value", any_real(""));
   sec.finish();

@@ -1,14 +1,12 @@
 // solid: materials (elastic constants per mesh region), boundary conditions and gravity.
 #include <map>
 
+#include "engine/scene/scene_names.hpp"
 #include "engine/scene/scene_sections.hpp"
 
 namespace rift {
 namespace {
 
-// SolidBoundarySpec::Kind order.
-constexpr std::array<std::string_view, 6> kBoundaryTypes{"fixed",    "velocity", "traction",
-                                                         "pressure", "in_situ",  "fluid_pressure"};
 constexpr std::array<std::string_view, 3> kComponents{"x", "y", "z"};
 
 MaterialSpec read_material(MapReader& m) {
@@ -50,13 +48,13 @@ SolidBoundarySpec read_boundary(MapReader& b) {
     corner(b.unused(), "box_min");
     corner(b.unused(), "box_max");
   }
-  bc.kind = static_cast<Kind>(b.choice("type", kBoundaryTypes, std::nullopt));
+  bc.kind = b.choice("type", scene_names::kSolidBoundary, std::optional<Kind>());
   if (!b.ok("type")) {  // which keys apply is unknown: accept them unread rather than guess
     for (auto key : {"components", "direction", "value"}) b.declare(key);
     b.finish();
     return bc;
   }
-  const std::string for_type = "for type " + std::string(kBoundaryTypes[static_cast<size_t>(bc.kind)]);
+  const std::string for_type = "for type " + std::string(name_of(scene_names::kSolidBoundary, bc.kind));
   if (bc.kind == Kind::fixed || bc.kind == Kind::velocity) {
     std::array<bool, 3> on{};
     for (size_t axis : b.choice_list("components", kComponents, {0, 1, 2}, 1)) on[axis] = true;

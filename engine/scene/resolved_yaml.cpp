@@ -4,6 +4,7 @@
 
 #include "engine/core/fnv1a.hpp"
 #include "engine/scene/number_text.hpp"
+#include "engine/scene/scene_names.hpp"
 
 namespace rift {
 namespace {
@@ -89,7 +90,7 @@ void emit_time(Lines& o, const TimeSpec& t) {
 
 void emit_notch(Lines& o, const NotchSpec& n, int i) {
   static constexpr const char* kAxes[] = {"x", "y", "z"};
-  o.item(i + 3, "shape", n.shape == NotchSpec::Shape::wedge ? "wedge" : "slot");
+  o.item(i + 3, "shape", name_of(scene_names::kNotchShape, n.shape));
   o.line(i + 4, "face", n.face);
   o.line(i + 4, "opening_axis", kAxes[n.opening_axis]);
   o.line(i + 4, "center", yaml_real(n.center));
@@ -223,15 +224,13 @@ void emit_initial_stress(Lines& o, const InitialStressSpec& s) {
 // Only the keys that apply to the boundary's type, as the reader forbids the others.
 void emit_boundary(Lines& o, const SolidBoundarySpec& b) {
   using Kind = SolidBoundarySpec::Kind;
-  static constexpr const char* kTypes[] = {"fixed",    "velocity", "traction",
-                                           "pressure", "in_situ",  "fluid_pressure"};
   if (b.box_min) {
     o.item(2, "box_min", vec3(*b.box_min));
     o.line(3, "box_max", vec3(*b.box_max));
   } else {
     o.item(2, "surface", quoted(b.surface));
   }
-  o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
+  o.line(3, "type", name_of(scene_names::kSolidBoundary, b.kind));
   if (b.kind == Kind::fixed || b.kind == Kind::velocity) {
     std::string comps;
     for (int a = 0; a < 3; ++a)
@@ -266,7 +265,6 @@ void emit_solid(Lines& o, const SolidSpec& s) {
 
 void emit_fluid(Lines& o, const FluidSpec& f) {
   using Kind = FluidBoundarySpec::Kind;
-  static constexpr const char* kTypes[] = {"no_slip", "velocity", "free_slip", "pressure", "outflow"};
   o.line(0, "fluid");
   if (f.mesh) emit_mesh(o, *f.mesh, 1);
   o.line(1, "density", yaml_real(f.density));
@@ -276,11 +274,10 @@ void emit_fluid(Lines& o, const FluidSpec& f) {
   o.line(1, "convection", f.convection ? "true" : "false");
   o.line(1, "supg", f.supg ? "true" : "false");
   o.line(1, "pressure_subscale", f.dynamic_subscale ? "dynamic" : "quasi_static");
-  o.line(1, "coupling", f.coupling == FluidSpec::Coupling::schur_gmres ? "schur_gmres" : "projection");
+  o.line(1, "coupling", name_of(scene_names::kPressureCoupling, f.coupling));
   o.line(1, "picard_max_iterations", std::to_string(f.picard_max_iterations));
   o.line(1, "picard_tolerance", yaml_real(f.picard_tolerance));
-  o.line(1, "on_picard_failure",
-         f.on_picard_failure == FluidSpec::OnPicardFailure::stop ? "stop" : "continue");
+  o.line(1, "on_picard_failure", name_of(scene_names::kOnPicardFailure, f.on_picard_failure));
   o.line(1, "velocity_tolerance", yaml_real(f.velocity_tolerance));
   o.line(1, "velocity_max_iterations", std::to_string(f.velocity_max_iterations));
   o.line(1, "schur_tolerance", yaml_real(f.schur_tolerance));
@@ -294,7 +291,7 @@ void emit_fluid(Lines& o, const FluidSpec& f) {
   o.line(1, "boundaries");
   for (const auto& b : f.boundaries) {
     o.item(2, "surface", quoted(b.surface));
-    o.line(3, "type", kTypes[static_cast<int>(b.kind)]);
+    o.line(3, "type", name_of(scene_names::kFluidBoundary, b.kind));
     if (b.kind == Kind::velocity) {
       o.line(3, "direction", vec3(b.direction));
       std::string axes;
@@ -317,7 +314,7 @@ void emit_output(Lines& o, const OutputSpec& out) {
 
 void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
   o.line(0, "fluid_solid");
-  o.line(1, "force", c.force == FluidSolidSpec::Force::volume ? "volume" : "wetted_faces");
+  o.line(1, "force", name_of(scene_names::kCouplingForce, c.force));
   o.line(1, "substeps", std::to_string(c.substeps));
   if (c.relaxation_time > 0.0)
     o.line(1, "relaxation_time", yaml_real(c.relaxation_time));
@@ -325,12 +322,12 @@ void emit_fluid_solid(Lines& o, const FluidSolidSpec& c) {
     o.line(1, "beta", yaml_real(c.beta));
   o.line(1, "added_mass", yaml_real(c.added_mass));
   o.line(1, "dilatation", c.dilatation ? "true" : "false");
-  o.line(1, "continuity", c.continuity == FluidSolidSpec::Continuity::mixture ? "mixture" : "fluid");
+  o.line(1, "continuity", name_of(scene_names::kContinuity, c.continuity));
   if (c.network_inlet) {
     o.line(1, "network_inlet", vec3(*c.network_inlet));
     o.line(1, "network_inlet_extent", vec3(c.network_inlet_extent));
   }
-  o.line(1, "coupling", c.coupling == FluidSolidSpec::Coupling::sequential ? "sequential" : "concurrent");
+  o.line(1, "coupling", name_of(scene_names::kWindowCoupling, c.coupling));
 }
 
 void emit_fracture_flow(Lines& o, const FractureFlowSpec& f) {
@@ -344,8 +341,7 @@ void emit_fracture_flow(Lines& o, const FractureFlowSpec& f) {
   o.line(1, "initial_pressure", yaml_real(f.initial_pressure));
   o.line(1, "interval", std::to_string(f.interval));
   o.line(1, "wet_damage", yaml_real(f.wet_damage));
-  static constexpr const char* kSolvers[] = {"automatic", "direct", "cg"};
-  o.line(1, "solver", kSolvers[f.solver]);
+  o.line(1, "solver", name_of(scene_names::kNetworkSolver, f.solver));
   o.line(1, "injection");
   o.line(2, "point", vec3(f.point));
   if (f.rate) emit_time_function(o, 2, "rate", *f.rate);
@@ -373,14 +369,13 @@ void emit_checkpoint(Lines& o, const CheckpointSpec& c) {
 }
 
 void emit_reference(Lines& o, const std::vector<ReferenceMetricSpec>& reference) {
-  static constexpr const char* kReduce[] = {"max", "min", "final", "max_abs"};
   if (reference.empty()) return;
   o.line(0, "reference");
   for (const auto& m : reference) {
     o.item(1, "name", quoted(m.name));
     if (m.summary.empty()) {
       o.line(2, "series", quoted(m.series));
-      o.line(2, "reduce", kReduce[static_cast<int>(m.reduce)]);
+      o.line(2, "reduce", name_of(scene_names::kReduce, m.reduce));
     } else {
       o.line(2, "summary", quoted(m.summary));
     }

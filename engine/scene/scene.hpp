@@ -218,7 +218,7 @@ struct SolidSpec {
 
 // A fluid boundary condition on a named mesh surface (systems/fluid/fluid_solver.hpp BoundaryKind).
 struct FluidBoundarySpec {
-  enum class Kind { no_slip, velocity, free_slip, pressure, outflow };  // fluid::BoundaryKind order
+  enum class Kind { no_slip, velocity, free_slip, pressure, outflow };
   Kind kind = Kind::no_slip;
   std::string surface;
   std::array<double, 3> direction{};  // velocity: the vector [m/s] `function` scales
@@ -241,7 +241,7 @@ struct FluidAdaptSpec {
 
 // Incompressible Navier-Stokes (systems/fluid, docs/fluid.md) on its own mesh.
 struct FluidSpec {
-  enum class Coupling { schur_gmres, projection };  // fluid::PressureCoupling order
+  enum class Coupling { schur_gmres, projection };
   enum class OnPicardFailure { stop, continue_run };
   std::optional<MeshSpec> mesh;         // absent: the top-level mesh
   std::optional<FluidAdaptSpec> adapt;  // absent: the mesh is fixed
@@ -330,9 +330,10 @@ struct FractureFlowSpec {
   // A joint joins the network when its damage (the largest D_max of its points) reaches this: 1, only
   // broken joints; below 1, the fluid also enters the process zone ahead of the crack.
   double wet_damage = 1.0;
-  // The pressure solve: 0 automatic (factorisation below 2000 network vertices, CG above), 1 the
-  // factorisation, 2 conjugate gradients (systems/fracture_flow/network_flow.hpp).
-  int solver = 0;
+  // The pressure solve: automatic (factorisation below 2000 network vertices, CG above), direct (the
+  // factorisation), cg (conjugate gradients) (systems/fracture_flow/network_flow.hpp).
+  enum class Solver { automatic, direct, cg };
+  Solver solver = Solver::automatic;
   // The well: the crack vertex nearest `point` (within an element of it), given extra storage; or, with
   // well_surfaces, those surfaces (a borehole's wall): one lumped vertex that every crack point on them
   // joins, whose pressure loads them. `point` then only places the well (extents are measured from it).

@@ -82,6 +82,22 @@ std::string describe_found(const YamlNode&);
 // "a, b, c"
 std::string join_names(std::span<const std::string_view> names);
 
+// One value of an enum and its spelling in a scene file: the reader and the resolved-YAML writer both
+// map through the same table (scene_names.hpp), so the two cannot drift apart, and no enum's order
+// matters.
+template <class E>
+struct Named {
+  E value;
+  std::string_view name;
+};
+
+template <class E, size_t N>
+std::string_view name_of(const std::array<Named<E>, N>& table, E value) {
+  for (const Named<E>& n : table)
+    if (n.value == value) return n.name;
+  return "?";
+}
+
 // One YAML mapping (a scene section or a list item) being read.
 class MapReader {
  public:
@@ -109,6 +125,17 @@ class MapReader {
   std::string string(std::string_view key, std::optional<std::string> fallback, bool allow_empty = false);
   size_t choice(std::string_view key, std::span<const std::string_view> options,
                 std::optional<size_t> fallback);
+  // The same, for an enum named by `table`.
+  template <class E, size_t N>
+  E choice(std::string_view key, const std::array<Named<E>, N>& table, std::optional<E> fallback) {
+    std::array<std::string_view, N> names;
+    std::optional<size_t> fallback_index;
+    for (size_t i = 0; i < N; ++i) {
+      names[i] = table[i].name;
+      if (fallback && table[i].value == *fallback) fallback_index = i;
+    }
+    return table[choice(key, names, fallback_index)].value;
+  }
   std::array<double, 3> vec3(std::string_view key, const RealRule& rule,
                              std::optional<std::array<double, 3>> fallback);
   // A list of non-empty strings with at least one item.

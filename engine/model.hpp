@@ -1,7 +1,8 @@
 #pragma once
-// A model is one physics package in a run (the solid today; fluid, contact and coupling later): it
-// creates its tables in the store, owns its systems, and answers the run loop's questions (stable
-// step, health after a step, fields to write, metrics for the time series and the summary).
+// A model is one physics package in a run (the solid, the fluid, their coupling, the fracture flow,
+// the mesh conversion, the probes): it creates its tables in the store, owns its systems, and answers
+// the run loop's questions (stable step, health after a step, fields to write, metrics for the time
+// series and the summary).
 // A model exists in a run only when its section is in the scene.
 #include <filesystem>
 #include <limits>

@@ -112,11 +112,11 @@ TEST(StabilityExtremes, StepAtPointNineAndOnePointFiveTimesTheStableEstimate) {
 }
 
 // Twice the estimate is past the real limit on the wave bar's dev-build mesh: that run blows up after
-// some 150 of its 171 steps, near its end; with the energy check every 64 steps and none after the last
-// step, it used to finish normally with a kinetic energy 250 x the work done. (The Release build meshes
-// the bar slightly differently and survives 2 x.) The guard now checks every 16 steps and after the last
-// one. This test pins the second part without depending on when a mesh goes unstable: energy that no work
-// fed (every node given 1 m/s) is reported at a step that is not a multiple of 16 only when it is the last.
+// some 150 of its 171 steps, near its end, so a guard that checked only every N steps and not after the
+// last would let it finish with a kinetic energy 250 x the work done. (The Release build meshes the bar
+// slightly differently and survives 2 x.) The guard checks every 16 steps and after the last one. This
+// test pins the second part without depending on when a mesh goes unstable: energy that no work fed
+// (every node given 1 m/s) is reported at a step that is not a multiple of 16 only when it is the last.
 TEST(StabilityExtremes, EnergyGuardChecksAfterTheLastStep) {
   RunOptions o;
   o.progress = false;

@@ -4,7 +4,7 @@
 namespace rift {
 
 inline constexpr const char* kRunPlotScript = R"PY(
-import csv, math, os, sys
+import csv, math, os, re, sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
@@ -45,6 +45,7 @@ families = [
     ("fluid.png", "fluid: pressure, speed, CFL, divergence", lambda c: c.startswith("fluid_") and not has(
         "iterations", "converged")(c)),
     ("fluid_solver.png", "fluid solver iterations", lambda c: c.startswith("fluid_")),
+    ("probes.png", "probes (each probe's points on one axes)", lambda c: c.startswith("probe_")),
     ("other.png", "other series", lambda c: True),
 ]
 taken = {"step", "time"}
@@ -56,6 +57,11 @@ for name, heading, rule in families:
         continue
     if name == "energy.png":  # the balance error on its own axes: it is orders below the terms
         groups = [[c for c in chosen if not c.endswith("balance_error")], [c for c in chosen if c.endswith("balance_error")]]
+    elif name == "probes.png":  # probe_<name> or probe_<name>_<i>: one axes per probe
+        by_probe = {}
+        for c in chosen:
+            by_probe.setdefault(re.sub(r"_\d+$", "", c), []).append(c)
+        groups = list(by_probe.values())
     else:
         groups = [[c] for c in chosen]
     groups = [g for g in groups if g][:8]

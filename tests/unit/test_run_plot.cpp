@@ -21,10 +21,10 @@ TEST(RunPlot, OnePicturePerFamilyOfSeries) {
     std::ofstream csv(dir / "timeseries.csv");
     csv << "step,time,solid_kinetic_energy,solid_external_work,solid_energy_balance_error,solid_broken_"
            "joints,"
-           "solid_reaction_base_z,flow_well_pressure\n";
+           "solid_reaction_base_z,flow_well_pressure,probe_tip_0,probe_tip_1,probe_mouth\n";
     for (int i = 0; i <= 20; ++i)
       csv << i << "," << i * 1e-5 << "," << 0.1 * i << "," << 0.2 * i << "," << 1e-9 * i << "," << i / 5
-          << "," << -10.0 * i << "," << 1e6 + 1e4 * i << "\n";
+          << "," << -10.0 * i << "," << 1e6 + 1e4 * i << "," << i << "," << 2 * i << "," << 1.5e7 << "\n";
   }
   const RunPlotResult r = plot_run(dir.path());
   ASSERT_TRUE(r.problem.empty()) << r.problem;
@@ -34,8 +34,8 @@ TEST(RunPlot, OnePicturePerFamilyOfSeries) {
     EXPECT_TRUE(fs::is_regular_file(p)) << p;
     EXPECT_GT(fs::file_size(p), 1000u) << p;
   }
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"energy.png", "loads.png", "fracture.png", "fracture_flow.png"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"energy.png", "loads.png", "fracture.png", "fracture_flow.png",
+                                             "probes.png"}));
   EXPECT_EQ(r.pictures[0].parent_path(), dir / "plots");
 }
 

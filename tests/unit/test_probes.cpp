@@ -84,6 +84,10 @@ probes:
     component: x
     factor: 1.0e3
     points: [{at: [0.01, 0.01, 0.01]}, {at: [0.1, 0.05, 0.05], value: 0.03}]
+  - name: line
+    field: solid.displacement
+    component: x
+    line: {from: [0.0, 0.0, 0.0], to: [0.1, 0.05, 0.05], count: 5}
   - name: sxx
     field: solid.stress
     component: xx
@@ -116,6 +120,10 @@ TEST(Probes, ReadTheSolidAtPointsThatMoveWithIt) {
   EXPECT_EQ(probes["moved"]["compared"].get<int>(), 1);
   EXPECT_LT(probes["moved"]["max_error"].get<double>(), 1e-12);
   EXPECT_LT(std::abs(probes["sxx"]["values"][0].get<double>()), 1e-3);  // Pa, against a 6e10 Pa modulus
+  // A line of 5 points, corner to corner, each moved by 0.3 x 1e-4 m.
+  ASSERT_EQ(probes["line"]["values"].size(), 5u);
+  for (const auto& v : probes["line"]["values"]) EXPECT_NEAR(v.get<double>(), 3e-5, 1e-15);
+  EXPECT_FALSE(probes["line"].contains("max_error"));  // no known values
   // Every point is a time-series column, sampled at every row.
   std::ifstream csv(dir / "run" / "timeseries.csv");
   std::string header, row, last;

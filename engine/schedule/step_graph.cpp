@@ -48,6 +48,9 @@ StepGraph::StepGraph(std::vector<System*> systems, int threads)
   for (System* s : systems_) {
     access_.push_back(s->access());
     timings_.push_back({s->name(), 0.0, 0});
+    periods_.push_back(s->period());
+    if (periods_.back() < 1)
+      throw Error("internal: system " + s->name() + " has period " + std::to_string(periods_.back()));
   }
   derive_edges();
   epoch_ = std::chrono::steady_clock::now();
@@ -84,6 +87,7 @@ void StepGraph::build_flow_graph() {
     start_ = std::make_unique<broadcast_node<continue_msg>>(*graph_);
     for (size_t i = 0; i < systems_.size(); ++i) {
       nodes_.push_back(std::make_unique<continue_node<continue_msg>>(*graph_, [this, i](const continue_msg&) {
+        if (!runs_at(periods_[i], *current_)) return continue_msg();
         const auto t0 = std::chrono::steady_clock::now();
         systems_[i]->run(*current_);
         const auto t1 = std::chrono::steady_clock::now();
@@ -126,6 +130,7 @@ void StepGraph::run_step(const StepContext& ctx) {
 void StepGraph::run_checked(const StepContext& ctx) {
   arena_.execute([&] {
     for (size_t i = 0; i < systems_.size(); ++i) {
+      if (!runs_at(periods_[i], ctx)) continue;
       const StoreFingerprint before = fingerprint(*checked_store_);
       std::vector<std::string> looked_up;
       {
@@ -153,7 +158,9 @@ std::string StepGraph::dot() const {
     for (int j : successors_[i]) has_predecessor[j] = true;
   for (size_t i = 0; i < systems_.size(); ++i) {
     out << "  s" << i << " [label=\"" << systems_[i]->name() << "\\nreads " << access_[i].reads.size()
-        << ", writes " << access_[i].writes.size() << " columns\"];\n";
+        << ", writes " << access_[i].writes.size() << " columns"
+        << (periods_[i] > 1 ? "\\nevery " + std::to_string(periods_[i]) + " steps" : std::string())
+        << "\"];\n";
     if (!has_predecessor[i]) out << "  start -> s" << i << ";\n";
   }
   for (size_t i = 0; i < systems_.size(); ++i)

@@ -58,6 +58,7 @@ class StepGraph {
 
   std::vector<System*> systems_;
   std::vector<Access> access_;
+  std::vector<int64_t> periods_;                    // System::period of each
   std::vector<std::vector<int>> successors_;        // after transitive reduction
   std::vector<std::vector<std::string>> edge_why_;  // column that forced each edge (parallel to successors_)
   std::vector<SystemTiming> timings_;

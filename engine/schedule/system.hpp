@@ -49,6 +49,15 @@ class System {
   virtual std::string name() const = 0;
   virtual Access access() const = 0;
   virtual void run(const StepContext& ctx) = 0;
+  // The system runs on the steps that end a window of period() steps (step index + 1 a multiple of it),
+  // and is skipped on the others: the fluid's step and its exchanges with the solid, once per window of
+  // fluid_solid.substeps solid steps. Fixed for the run.
+  virtual int64_t period() const { return 1; }
 };
+
+// Whether a system of this period runs at the step `ctx` describes (System::period).
+inline bool runs_at(int64_t period, const StepContext& ctx) {
+  return (ctx.step + 1) % period == 0;
+}
 
 }  // namespace rift

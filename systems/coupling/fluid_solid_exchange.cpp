@@ -21,10 +21,6 @@ namespace rift {
 namespace {
 constexpr size_t kTetGrain = 4096, kPairGrain = 1024;
 
-bool window_end(const StepContext& ctx, int64_t substeps) {
-  return (ctx.step + 1) % substeps == 0;
-}
-
 // The network inlet's fluid cells and their shares (pairs.inlet_cells, pairs.inlet_shares, summing to 1).
 // A point (zero extent): the one cell that holds it. A box: the cells whose centres lie in it, each in
 // proportion to the fluid it holds, (1 - alpha_K) |K|: a sink spread over the notch's mouth draws the
@@ -178,8 +174,8 @@ Access SolidToFluidSystem::access() const {
   return a;
 }
 
-void SolidToFluidSystem::run(const StepContext& ctx) {
-  if (window_end(ctx, settings_.substeps)) exchange();
+void SolidToFluidSystem::run(const StepContext&) {
+  exchange();
 }
 
 // The candidate pairs, their overlap volumes and the solid tets' mean velocities, for the solid at node
@@ -401,8 +397,8 @@ Access FluidToSolidSystem::access() const {
   return a;
 }
 
-void FluidToSolidSystem::run(const StepContext& ctx) {
-  if (window_end(ctx, settings_.substeps)) exchange();
+void FluidToSolidSystem::run(const StepContext&) {
+  exchange();
 }
 
 void FluidToSolidSystem::exchange(bool initial) {

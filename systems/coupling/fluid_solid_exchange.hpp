@@ -66,8 +66,9 @@ class SolidToFluidSystem : public System {
                      ExchangePairs& pairs);
   std::string name() const override { return "solid_to_fluid"; }
   Access access() const override;
-  void run(const StepContext& ctx) override;
-  void exchange();  // unconditionally (the initial exchange at t = 0)
+  void run(const StepContext& ctx) override;  // exchange(), at the end of each window
+  int64_t period() const override { return settings_.substeps; }
+  void exchange();  // also the initial exchange at t = 0, outside the step
   // The fluid's mesh was remade (fluid.adapt): its tet boxes and the per-tet scratch again.
   void fluid_mesh_changed();
   // After a restart: hand the stored absorption and solid velocity back to the solver.
@@ -107,7 +108,8 @@ class FluidToSolidSystem : public System {
   void set_fluid_volume(std::span<const double> fluid_volume) { fluid_volume_ = fluid_volume; }
   std::string name() const override { return "fluid_to_solid"; }
   Access access() const override;
-  void run(const StepContext& ctx) override;
+  void run(const StepContext& ctx) override;  // exchange(), at the end of each window
+  int64_t period() const override { return settings_.substeps; }
   // initial: the exchange at t = 0, before the fluid has felt the solid: only the body-force part
   // (buoyancy). The absorption's reaction is not known until the fluid has stepped with it.
   void exchange(bool initial = false);

@@ -25,7 +25,8 @@ inline constexpr std::array<ProbeField, 5> kProbeFields{{
     {"solid.displacement", kProbeVectorComponents, "m",
      "x - x0 (P1 in the tet holding the point in the reference configuration: the probe moves with the "
      "rock)"},
-    {"solid.velocity", kProbeVectorComponents, "m/s", "the solid's velocity, read as solid.displacement"},
+    {"solid.velocity", kProbeVectorComponents, "m/s",
+     "the solid's velocity (the central difference's, at t - dt/2), read as solid.displacement"},
     {"solid.stress", kProbeStressComponents, "Pa", "the Cauchy stress of the tet holding the point (P0)"},
 }};
 

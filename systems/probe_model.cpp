@@ -102,6 +102,7 @@ void ProbeModel::summarize(nlohmann::json& summary) const {
     auto& s = all[g.spec.name];
     s["field"] = g.spec.field;
     s["component"] = g.spec.component;
+    s["field_unit"] = std::string(find_probe_field(g.spec.field)->unit);
     s["factor"] = g.spec.factor;
     s["values"] = g.reading;
     nlohmann::json known = nlohmann::json::array();

@@ -31,8 +31,22 @@ ProbeModel::ProbeModel(const Store& store, std::vector<ProbeSpec> probes) : stor
         static_cast<size_t>(std::find(field.components.begin(), field.components.end(), spec.component) -
                             field.components.begin());
     g.fluid = spec.field.starts_with("fluid.");
+    if (spec.field == "fluid.pressure") {
+      g.column = "pressure";
+    } else if (spec.field == "fluid.velocity") {
+      g.read = Read::nodal_vector, g.column = "velocity";
+    } else if (spec.field == "solid.velocity") {
+      g.read = Read::nodal_vector, g.column = "v";
+    } else if (spec.field == "solid.displacement") {
+      g.read = Read::displacement, g.column = "x";
+    } else {
+      g.read = Read::tet_stress, g.column = "stress";
+    }
     g.spec = std::move(spec);
-    g.reading.assign(g.spec.points.size(), 0.0);
+    const size_t n = g.spec.points.size();
+    for (size_t i = 0; i < n; ++i)
+      g.names.push_back("probe_" + g.spec.name + (n == 1 ? "" : "_" + std::to_string(i)));
+    g.reading.assign(n, 0.0);
     locate(g);
     gauges_.push_back(std::move(g));
   }
@@ -63,21 +77,18 @@ void ProbeModel::locate(Gauge& g) const {
 }
 
 double ProbeModel::read(const Gauge& g, const kernels::TetPointLocation& where) const {
-  if (g.spec.field == "solid.stress")
-    return store_.table(solid::tet_table)
-        .span<const double>("stress")[6 * static_cast<size_t>(where.tet) + g.component];
+  const Table& tets = store_.table(g.fluid ? fluid::tet_table : solid::tet_table);
+  if (g.read == Read::tet_stress)
+    return tets.span<const double>(g.column)[6 * static_cast<size_t>(where.tet) + g.component];
   const Table& nodes = store_.table(g.fluid ? fluid::node_table : solid::node_table);
-  const auto tet_nodes =
-      store_.table(g.fluid ? fluid::tet_table : solid::tet_table).span<const int32_t>("nodes");
-  if (g.spec.field == "fluid.pressure")
-    return kernels::interpolate_p1(where, tet_nodes, nodes.span<const double>("pressure"), 1, 0);
-  // A vector: fluid velocity, solid velocity, or solid displacement x - x0.
-  const bool displacement = g.spec.field == "solid.displacement";
-  const auto f = nodes.span<const double>(g.fluid ? "velocity" : displacement ? "x" : "v");
+  const auto tet_nodes = tets.span<const int32_t>("nodes");
+  const auto f = nodes.span<const double>(g.column);
+  if (g.read == Read::nodal_scalar) return kernels::interpolate_p1(where, tet_nodes, f, 1, 0);
   double v[3];
   for (size_t d = 0; d < 3; ++d) {
     v[d] = kernels::interpolate_p1(where, tet_nodes, f, 3, d);
-    if (displacement) v[d] -= kernels::interpolate_p1(where, tet_nodes, nodes.span<const double>("x0"), 3, d);
+    if (g.read == Read::displacement)
+      v[d] -= kernels::interpolate_p1(where, tet_nodes, nodes.span<const double>("x0"), 3, d);
   }
   return g.component < 3 ? v[g.component] : std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
@@ -90,8 +101,7 @@ void ProbeModel::metrics(double, std::vector<std::pair<std::string, double>>& ro
     if (g.fluid && relocate) locate(g);
     for (size_t i = 0; i < g.where.size(); ++i) {
       g.reading[i] = g.spec.factor * read(g, g.where[i]);
-      row.emplace_back("probe_" + g.spec.name + (g.where.size() == 1 ? "" : "_" + std::to_string(i)),
-                       g.reading[i]);
+      row.emplace_back(g.names[i], g.reading[i]);
     }
   }
 }

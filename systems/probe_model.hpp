@@ -25,10 +25,14 @@ class ProbeModel final : public Model {
   void summarize(nlohmann::json& summary) const override;
 
  private:
+  enum class Read { nodal_scalar, nodal_vector, displacement, tet_stress };
   struct Gauge {
     ProbeSpec spec;
     bool fluid = false;
-    size_t component = 0;  // index into the field's components (probe_fields.hpp)
+    Read read = Read::nodal_scalar;
+    const char* column = "";         // the store column read (nodes or tets of the gauge's model)
+    size_t component = 0;            // index into the field's components (probe_fields.hpp)
+    std::vector<std::string> names;  // the time-series column of each point
     std::vector<kernels::TetPointLocation> where;
     std::vector<double> reading;  // factor x the field at each point, at the last time-series row
   };

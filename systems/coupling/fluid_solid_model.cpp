@@ -114,7 +114,7 @@ void FluidSolidModel::before_step(const StepContext& at) {
 // coupling but for the solid's time the fluid sees. The launch waits for the next step's before_step, so
 // that between steps (outputs, health checks, a checkpoint at a window's end) no task is running.
 void FluidSolidModel::after_step(const StepContext& taken) {
-  if ((taken.step + 1) % settings_.substeps != 0) return;
+  if (!runs_at(settings_.substeps, taken)) return;  // the window ends at another step
   const int64_t window = (taken.step + 1) / settings_.substeps;
   const double t_end = static_cast<double>(taken.step + 1) * taken.dt;
   if (!concurrent_) {

@@ -414,7 +414,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
 
   std::fill(source_.begin(), source_.end(), 0.0);
   const int64_t interval = spec_.interval;
-  const bool solve = (ctx.step + 1) % interval == 0;
+  const bool solve = runs_at(interval, ctx);
   const NetworkFlowStepInput in{solve ? double(interval) * ctx.dt : ctx.dt,
                                 t_end,
                                 tri_x_,

@@ -1,9 +1,9 @@
 #pragma once
 // A model is one physics package in a run (the solid, the fluid, their coupling, the fracture flow,
-// the mesh conversion, the probes): it creates its tables in the store, owns its systems, and answers
-// the run loop's questions (stable step, health after a step, fields to write, metrics for the time
-// series and the summary).
-// A model exists in a run only when its section is in the scene.
+// the mesh conversion, the probes): it creates its tables in the store, owns its systems (which the
+// composition root places in the step plan, systems/step_script.cpp), and answers the run loop's questions
+// (stable step, health after a step, fields to write, metrics for the time series and the summary). A model
+// exists in a run only when its section is in the scene.
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -21,8 +21,6 @@ class Model {
  public:
   virtual ~Model() = default;
   virtual std::string name() const = 0;
-  // Systems in the order a one-thread step would run them (the graph keeps only what data forces).
-  virtual std::vector<System*> systems() = 0;
   // Largest step this model is stable with [s] (infinity when it sets no limit).
   virtual double stable_dt() const { return std::numeric_limits<double>::infinity(); }
   // The one step this model runs with [s] (an implicit model's own step, e.g. fluid.dt), if it has one.
@@ -39,18 +37,8 @@ class Model {
   // Logs beside the time series (e.g. the fracture log), written atomically whenever it is.
   virtual void write_logs(const std::filesystem::path& dir) const {}
 
-  // Work a model keeps running beside the step graph (the concurrent fluid step, docs/coupling.md). The
-  // run loop calls before_step ahead of each step's graph and after_step right after it (before the
-  // health checks), both inside the graph's task arena, so a task launched there shares the run's
-  // threads. join() waits for that work; the loop calls it before anything reads the whole store while
-  // it could be running (a checkpoint, the final state hash) and on the way out. background_access():
-  // every column that work reads or writes; the run refuses to start when a system of the graph touches
-  // one of them, since the two run at the same time.
-  virtual void before_step(const StepContext& at) {}
-  virtual void after_step(const StepContext& taken) {}
-  virtual void join() {}
-  virtual Access background_access() const { return {}; }
-  // Wall times of work done outside the graph's systems (for the timing table and summary.json).
+  // Wall times of work done outside the graph's systems (beside and after stages), for the timing table
+  // and summary.json.
   virtual std::vector<SystemTiming> timings() const { return {}; }
 };
 

@@ -46,7 +46,8 @@ RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
   world_ = build(scene_);
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
-  graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads);
+  graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads, world_->plan.graph_periods());
+  spdlog::info("the step, as the composition root scripts it:\n{}", world_->plan.script());
   check_background_access();
   if (options_.check_access) {
     // The check attributes every column lookup during a system's run to that system: work running beside
@@ -122,20 +123,18 @@ RunLoop::~RunLoop() {
   if (options_.write_output) close_log_file();
 }
 
-// Work a model runs beside the graph (Model::before_step) overlaps every system of the graph, so no system
-// may write a column that work touches or read one it writes: checked once, from the declared access, the
-// same rule the graph orders its own systems by.
+// Work a stage runs beside the graph (engine/schedule/step_plan.hpp) overlaps every system of the graph, so
+// no system may write a column that work touches or read one it writes: checked once, from the declared
+// access, the same rule the graph orders its own systems by.
 void RunLoop::check_background_access() {
-  for (const auto& m : world_->models) {
-    const Access background = m->background_access();
-    if (background.reads.empty() && background.writes.empty() && background.resizes.empty() &&
-        !background.changes_topology)
-      continue;
+  for (const StepStage& stage : world_->plan.stages()) {
+    if (stage.kind != StepStage::Kind::beside) continue;
     has_background_ = true;
+    const Access background = stage.work->access();
     for (System* s : world_->systems()) {
       const std::string column = access_conflict(background, s->access());
       if (!column.empty())
-        throw Error("internal: the " + m->name() + " model's work beside the step and the system " +
+        throw Error("internal: the step stage '" + stage.name + "' beside the graph and the system " +
                     s->name() + " both use " + column + " at the same time; report this with the scene");
     }
   }
@@ -144,7 +143,7 @@ void RunLoop::check_background_access() {
 void RunLoop::join_background() {
   if (!has_background_) return;
   graph_->in_arena([&] {
-    for (const auto& m : world_->models) m->join();
+    for (BackgroundWork* work : world_->plan.background()) work->join();
   });
 }
 
@@ -309,24 +308,38 @@ void kill_at_step_if_asked(int64_t step) {
 
 }  // namespace
 
+// The plan's stages around the graph at step `ctx`. Before the graph (beside): each background stage whose
+// window starts here launches. After it: in script order, each background stage whose window ends here
+// joins and each after-graph stage due runs. Inside the graph's arena when work runs beside the graph
+// (its task must live there).
+void RunLoop::run_stages(StepStage::Kind when, const StepContext& ctx) {
+  auto run = [&] {
+    for (const StepStage& stage : world_->plan.stages()) {
+      if (when == StepStage::Kind::beside) {
+        if (stage.kind == StepStage::Kind::beside && starts_window(stage.every, ctx)) stage.work->launch(ctx);
+      } else if (stage.kind != StepStage::Kind::graph && runs_at(stage.every, ctx)) {
+        if (stage.kind == StepStage::Kind::beside)
+          stage.work->join();
+        else
+          stage.run(ctx);
+      }
+    }
+  };
+  if (has_background_)
+    graph_->in_arena(run);
+  else
+    run();
+}
+
 void RunLoop::step_once() {
   kill_at_step_if_asked(step_ + 1);
   const bool observed =
       observe_every_step_ || observe_next_ || (step_ + 1) % kObservedEvery == 0 || step_ + 1 == total_steps_;
   const StepContext ctx{step_, time(), dt_, false, observed};
-  // The hooks run in the graph's arena when a model works beside the graph (its task must live there).
-  auto hooks = [&](auto&& call) {
-    if (has_background_)
-      graph_->in_arena([&] {
-        for (const auto& m : world_->models) call(*m);
-      });
-    else
-      for (const auto& m : world_->models) call(*m);
-  };
-  hooks([&](Model& m) { m.before_step(ctx); });
+  run_stages(StepStage::Kind::beside, ctx);  // launches the windows that start here
   graph_->run_step(ctx);
   ++step_;
-  hooks([&](Model& m) { m.after_step(ctx); });
+  run_stages(StepStage::Kind::after, ctx);  // joins and after-graph work of the windows that end here
   const StepContext after{step_, time(), dt_, step_ == total_steps_};
   // Every guard that fires at this step is reported: one model's failure is often another's symptom (a
   // fluid step that does not converge while the coupling's force oscillates and grows).

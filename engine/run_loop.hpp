@@ -79,6 +79,7 @@ class RunLoop {
   void write_summary(const RunResult& result) const;
   void log_timing_table() const;
   void check_background_access();
+  void run_stages(StepStage::Kind when, const StepContext& ctx);
   void remove_killed_writers_files();
   void join_background();
   void join_background_quietly() noexcept;
@@ -99,7 +100,7 @@ class RunLoop {
   std::vector<std::vector<double>> metric_rows_;
   std::string progress_quantities_;  // the progress line's physics (key_quantities in simulation.cpp)
   double output_seconds_ = 0.0, checkpoint_seconds_ = 0.0;
-  bool has_background_ = false;  // a model runs work beside the graph (Model::before_step)
+  bool has_background_ = false;  // a stage of the step plan runs beside the graph
 };
 
 }  // namespace rift

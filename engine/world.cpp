@@ -16,13 +16,6 @@
 
 namespace rift {
 
-std::vector<System*> World::systems() const {
-  std::vector<System*> all;
-  for (const auto& m : models)
-    for (System* s : m->systems()) all.push_back(s);
-  return all;
-}
-
 double World::stable_dt() const {
   double dt = std::numeric_limits<double>::infinity();
   for (const auto& m : models) dt = std::min(dt, m->stable_dt());

@@ -30,11 +30,6 @@ MeshConversionModel::MeshConversionModel(Store& store, const TetMesh& mesh,
                conversion_->vertex_count(), conversion_->triangle_count(), notch_triangles_.size());
 }
 
-std::vector<System*> MeshConversionModel::systems() {
-  if (system_) return {system_.get()};
-  return {};
-}
-
 const MeshConversion& MeshConversionModel::conversion() {
   if (system_) system_->catch_up();
   return *conversion_;

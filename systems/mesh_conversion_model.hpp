@@ -24,7 +24,8 @@ class MeshConversionModel : public Model {
   MeshConversionModel(Store& store, const TetMesh& mesh, const std::vector<std::string>& notch_surfaces);
 
   std::string name() const override { return "mesh_conversion"; }
-  std::vector<System*> systems() override;
+  // Follows the fractures as joints break (null without joints); systems/step_script.cpp places it.
+  System* system() { return system_.get(); }
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;

@@ -20,7 +20,6 @@ class ProbeModel final : public Model {
  public:
   ProbeModel(const Store& store, std::vector<ProbeSpec> probes);
   std::string name() const override { return "probes"; }
-  std::vector<System*> systems() override { return {}; }
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;
 

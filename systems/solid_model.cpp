@@ -99,14 +99,6 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
       contact_ ? contact_->stable_step() : INFINITY);
 }
 
-std::vector<System*> SolidModel::systems() {
-  std::vector<System*> all{loads_.get(), tet_forces_.get()};
-  if (joint_forces_) all.push_back(joint_forces_.get());
-  if (contact_) all.push_back(contact_.get());
-  all.push_back(integration_.get());
-  return all;
-}
-
 void SolidModel::accept_fluid_forces() {
   store_.table(solid::node_table).add<double>("fluid_force", 3);
   integration_->add_external_node_force("fluid_force");

@@ -49,7 +49,6 @@ class SolidModel : public Model {
   SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec);
 
   std::string name() const override { return "solid"; }
-  std::vector<System*> systems() override;
   double stable_dt() const override { return stable_dt_; }
   std::optional<std::string> check_health(const StepContext& after) override;
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
@@ -58,6 +57,14 @@ class SolidModel : public Model {
   void write_logs(const std::filesystem::path& dir) const override;
 
   SolidEnergies energies() const;
+  // Its systems, which the step script places (systems/step_script.cpp): the element forces (joint
+  // forces and contact null when the scene has no fracture or no contact) and the node pass that gathers
+  // them and integrates.
+  System* surface_loads() { return loads_.get(); }
+  System* tet_forces() { return tet_forces_.get(); }
+  System* joint_forces() { return joint_forces_.get(); }
+  System* contact() { return contact_.get(); }
+  System* node_integration() { return integration_.get(); }
   // The fluid's forces on the nodes (systems/coupling): adds solid_node.fluid_force (3, zero), which the
   // node pass gathers as an external force. Before the step graph is built.
   void accept_fluid_forces();

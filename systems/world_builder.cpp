@@ -15,6 +15,7 @@
 #include "systems/mesh_conversion_model.hpp"
 #include "systems/probe_model.hpp"
 #include "systems/solid_model.hpp"
+#include "systems/step_script.hpp"
 
 namespace rift {
 
@@ -35,10 +36,12 @@ std::vector<std::string> notch_surfaces(const MeshSpec& spec, const TetMesh& mes
 // A fluid on its own mesh around the solid (scene.fluid->mesh, required with a solid), and the coupling.
 // The run's step is the solid's: fluid.dt / substeps.
 // conversion: the solid's continuous meshes (non-null with fluid.adapt, whose mesh follows its surface).
-void add_coupled_fluid(World& world, const Scene& scene, MeshConversionModel* conversion) {
+// Fills models.fluid and models.coupling.
+void add_coupled_fluid(World& world, const Scene& scene, StepModels& models) {
+  MeshConversionModel* conversion = models.conversion;
   const FluidSpec& fluid = *scene.fluid;
   const FluidSolidSpec& spec = *scene.fluid_solid;
-  auto& solid = static_cast<SolidModel&>(*world.models.front());
+  SolidModel& solid = *models.solid;
   const double stable = solid.stable_dt();
   const int64_t automatic = FluidSolidModel::automatic_substeps(fluid.dt, stable, scene.time.safety);
   const int64_t substeps = spec.substeps > 0 ? spec.substeps : automatic;
@@ -66,19 +69,30 @@ void add_coupled_fluid(World& world, const Scene& scene, MeshConversionModel* co
     world.fluid_mesh = std::make_unique<TetMesh>(load_mesh(*fluid.mesh, "fluid.mesh"));
     order_along_curve(*world.fluid_mesh);
   }
+  // What the fluid step reads of the coupling's (the solver reads these columns in place).
   const char* F = fluid::tet_table;
-  auto model = std::make_unique<FluidModel>(
-      world.store, *world.fluid_mesh, fluid, substeps,
-      std::vector<std::string>{fluid::col(F, "solid_fraction"), fluid::col(F, "absorption"),
-                               fluid::col(F, "solid_velocity")});
+  std::vector<std::string> coupling_reads{fluid::col(F, "solid_fraction"), fluid::col(F, "absorption"),
+                                          fluid::col(F, "solid_velocity")};
+  if (spec.dilatation) coupling_reads.push_back(fluid::col(F, "solid_dilatation"));
+  auto model = std::make_unique<FluidModel>(world.store, *world.fluid_mesh, fluid, substeps,
+                                            std::move(coupling_reads));
   FluidModel& f = *model;
+  models.fluid = model.get();
   world.models.push_back(std::move(model));
   std::vector<int32_t> well_wall_tets;  // the network's well, whose fluid cells the network owns
-  for (const auto& m : world.models)
-    if (const auto* flow = dynamic_cast<const FractureFlowModel*>(m.get()))
-      well_wall_tets = flow->well_wall_tets();
-  world.models.push_back(std::make_unique<FluidSolidModel>(world.store, solid, f, spec, std::move(adapter),
-                                                           std::move(well_wall_tets)));
+  if (models.fracture_flow) well_wall_tets = models.fracture_flow->well_wall_tets();
+  auto coupling = std::make_unique<FluidSolidModel>(world.store, solid, f, spec, std::move(adapter),
+                                                    std::move(well_wall_tets));
+  models.coupling = coupling.get();
+  world.models.push_back(std::move(coupling));
+}
+
+// Adds a model to the world and returns it, typed.
+template <class M>
+M* add(World& world, std::unique_ptr<M> model) {
+  M* typed = model.get();
+  world.models.push_back(std::move(model));
+  return typed;
 }
 
 }  // namespace
@@ -93,29 +107,28 @@ std::unique_ptr<World> build_world(const Scene& scene) {
   order_along_curve(world->mesh);  // neighbours close in memory (engine/mesh/spatial_order.hpp)
   world->mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   world->mesh_quality = measure_quality(world->mesh);
+  StepModels models;
   if (scene.solid)
-    world->models.push_back(std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
-  if (scene.fracture_flow)  // right after the solid: its step follows the node pass
-    world->models.push_back(std::make_unique<FractureFlowModel>(
-        world->store, static_cast<SolidModel&>(*world->models.front()), world->mesh, *scene.fracture_flow));
+    models.solid = add(*world, std::make_unique<SolidModel>(world->store, world->mesh, *scene.solid));
+  if (scene.fracture_flow)  // right after the solid, whose node pass then reads its crack forces
+    models.fracture_flow = add(*world, std::make_unique<FractureFlowModel>(
+                                           world->store, *models.solid, world->mesh, *scene.fracture_flow));
   // The continuous meshes only when something consumes them: the adaptive fluid mesh (before the fluid,
-  // whose first mesh follows the solid's surface), or an output that asks for the surface (last).
-  MeshConversionModel* conversion = nullptr;
+  // whose first mesh follows the solid's surface), or an output that asks for the surface.
   auto add_conversion = [&] {
-    auto model = std::make_unique<MeshConversionModel>(world->store, world->mesh,
-                                                       notch_surfaces(scene.mesh, world->mesh));
-    conversion = model.get();
-    world->models.push_back(std::move(model));
+    models.conversion = add(*world, std::make_unique<MeshConversionModel>(
+                                        world->store, world->mesh, notch_surfaces(scene.mesh, world->mesh)));
   };
   if (scene.solid && scene.fluid && scene.fluid->adapt) add_conversion();
   if (scene.fluid && scene.solid) {
-    add_coupled_fluid(*world, scene, conversion);
+    add_coupled_fluid(*world, scene, models);
   } else if (scene.fluid) {
-    world->models.push_back(std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
+    models.fluid = add(*world, std::make_unique<FluidModel>(world->store, world->mesh, *scene.fluid));
   }
-  if (scene.solid && scene.output.surface && !conversion) add_conversion();
+  if (scene.solid && scene.output.surface && !models.conversion) add_conversion();
   if (!scene.probes.empty())  // last: it reads what the others created
     world->models.push_back(std::make_unique<ProbeModel>(world->store, scene.probes));
+  world->plan = script_step(models);
   return world;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
-// The composition root: which models a scene needs, and in what order they step. A scene gets one model
+// The composition root: which models a scene needs, and the step they take (the script of stages in
+// systems/step_script.cpp). A scene gets one model
 // per physics section it has (model only what the scene requires): the solid; the fracture-flow network
 // right after it (its step follows the node pass); the continuous meshes when the adaptive fluid mesh or
 // an output consumes them; the fluid, on its own mesh around a solid with the coupling after it. The

@@ -274,7 +274,11 @@ int graph(const SceneArgs& args, int threads, const WorldBuilder& build) {
     options.progress = false;
     options.threads = threads;
     RunLoop sim(std::move(*scene), options, build);
-    std::cout << sim.graph().dot();
+    // The script the graph comes from, as a DOT comment: the order of stages, the windows, and the work
+    // beside and after the graph, which has no box in it.
+    std::cout << "/* the step, as the composition root scripts it:\n"
+              << sim.world().plan.script() << "\n*/\n"
+              << sim.graph().dot();
   } catch (const Error& e) {
     std::cerr << e.what() << "\n";
     return 2;

@@ -42,15 +42,18 @@ std::string access_conflict(const Access& earlier, const Access& later) {
   return "";
 }
 
-StepGraph::StepGraph(std::vector<System*> systems, int threads)
-    : systems_(std::move(systems)), threads_(threads), arena_(threads) {
+StepGraph::StepGraph(std::vector<System*> systems, int threads, std::vector<int64_t> periods)
+    : systems_(std::move(systems)), periods_(std::move(periods)), threads_(threads), arena_(threads) {
   if (threads < 1) throw Error("--threads must be at least 1, found " + std::to_string(threads));
-  for (System* s : systems_) {
-    access_.push_back(s->access());
-    timings_.push_back({s->name(), 0.0, 0});
-    periods_.push_back(s->period());
-    if (periods_.back() < 1)
-      throw Error("internal: system " + s->name() + " has period " + std::to_string(periods_.back()));
+  if (periods_.empty()) periods_.assign(systems_.size(), 1);
+  if (periods_.size() != systems_.size())
+    throw Error("internal: the step graph was given " + std::to_string(periods_.size()) + " periods for " +
+                std::to_string(systems_.size()) + " systems");
+  for (size_t i = 0; i < systems_.size(); ++i) {
+    access_.push_back(systems_[i]->access());
+    timings_.push_back({systems_[i]->name(), 0.0, 0});
+    if (periods_[i] < 1)
+      throw Error("internal: system " + systems_[i]->name() + " has period " + std::to_string(periods_[i]));
   }
   derive_edges();
   epoch_ = std::chrono::steady_clock::now();
@@ -116,8 +119,8 @@ void StepGraph::run_step(const StepContext& ctx) {
   if (checked_store_) return run_checked(ctx);
   current_ = &ctx;
   // Isolated: while it waits for the step, this thread runs only the step's own tasks, never a task a
-  // model left running beside the graph (Model::before_step). Otherwise it could pick up a whole
-  // concurrent fluid solve and hold the solid's next step back until it ends.
+  // stage of the step plan left running beside the graph (a `beside` stage). Otherwise it could pick up a
+  // whole concurrent fluid solve and hold the solid's next step back until it ends.
   arena_.execute([&] {
     tbb::this_task_arena::isolate([&] {
       start_->try_put(tbb::flow::continue_msg());

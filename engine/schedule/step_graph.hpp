@@ -29,7 +29,9 @@ struct SystemInterval {
 
 class StepGraph {
  public:
-  StepGraph(std::vector<System*> systems, int threads);
+  // periods[i]: system i runs on the steps that end each window of that many steps (runs_at) and is
+  // skipped on the others; empty: every system runs on every step.
+  StepGraph(std::vector<System*> systems, int threads, std::vector<int64_t> periods = {});
   ~StepGraph();
 
   void run_step(const StepContext& ctx);  // one trigger, returns when every system has run
@@ -58,7 +60,7 @@ class StepGraph {
 
   std::vector<System*> systems_;
   std::vector<Access> access_;
-  std::vector<int64_t> periods_;                    // System::period of each
+  std::vector<int64_t> periods_;                    // the window of each (step plan)
   std::vector<std::vector<int>> successors_;        // after transitive reduction
   std::vector<std::vector<std::string>> edge_why_;  // column that forced each edge (parallel to successors_)
   std::vector<SystemTiming> timings_;

@@ -1,7 +1,8 @@
 #pragma once
 // A system owns one piece of physics. It declares which columns it reads and which it writes
 // ("table.column" keys); the engine derives the step's task graph from those declarations, so no one
-// writes dependency counts by hand. run() is called once per step from one graph node; data
+// writes dependency counts by hand. run() is called from one graph node on each step its stage of the step
+// plan runs (engine/schedule/step_plan.hpp); data
 // parallelism inside it goes through parallel_for (engine/schedule/parallel.hpp).
 #include <cstdint>
 #include <string>
@@ -49,13 +50,11 @@ class System {
   virtual std::string name() const = 0;
   virtual Access access() const = 0;
   virtual void run(const StepContext& ctx) = 0;
-  // The system runs on the steps that end a window of period() steps (step index + 1 a multiple of it),
-  // and is skipped on the others: the fluid's step and its exchanges with the solid, once per window of
-  // fluid_solid.substeps solid steps. Fixed for the run.
-  virtual int64_t period() const { return 1; }
 };
 
-// Whether a system of this period runs at the step `ctx` describes (System::period).
+// Whether a system or stage that runs once per window of `period` steps runs at the step `ctx` describes:
+// the step that ends the window (its index + 1 a multiple of the period). The step plan gives each stage
+// its window (engine/schedule/step_plan.hpp).
 inline bool runs_at(int64_t period, const StepContext& ctx) {
   return (ctx.step + 1) % period == 0;
 }

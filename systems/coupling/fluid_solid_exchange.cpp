@@ -346,14 +346,9 @@ void SolidToFluidSystem::mark_network_cells() {
 
 void SolidToFluidSystem::restore_solver() {
   const Table& ft = store_.table(fluid::tet_table);
-  const auto sigma = ft.span<double>("absorption");
-  const auto target = ft.span<double>("solid_velocity");
-  std::copy(sigma.begin(), sigma.end(), solver_.sigma().begin());
-  std::copy(target.begin(), target.end(), solver_.target_velocity().begin());
-  if (settings_.dilatation) {
-    const auto dilatation = ft.span<double>("solid_dilatation");
-    std::copy(dilatation.begin(), dilatation.end(), solver_.dilatation().begin());
-  }
+  solver_.read_coupling_inputs(
+      ft.span<const double>("absorption"), ft.span<const double>("solid_velocity"),
+      settings_.dilatation ? ft.span<const double>("solid_dilatation") : std::span<const double>{});
   if (settings_.fluid_continuity) {
     const auto fraction = ft.span<double>("solid_fraction");
     const auto weight = solver_.continuity_weight();

@@ -67,11 +67,11 @@ class SolidToFluidSystem : public System {
   std::string name() const override { return "solid_to_fluid"; }
   Access access() const override;
   void run(const StepContext& ctx) override;  // exchange(), at the end of each window
-  int64_t period() const override { return settings_.substeps; }
-  void exchange();  // also the initial exchange at t = 0, outside the step
+  void exchange();                            // also the initial exchange at t = 0, outside the step
   // The fluid's mesh was remade (fluid.adapt): its tet boxes and the per-tet scratch again.
   void fluid_mesh_changed();
-  // After a restart: hand the stored absorption and solid velocity back to the solver.
+  // Points the solver at the stored absorption, solid velocity and dilatation (it reads them in place) and
+  // derives its continuity weights: after each exchange, a remesh and a restart.
   void restore_solver();
   // fluid_solid.network_inlet: the solid tets on the network's well (the notch). At every exchange they
   // mark, with the tets of the broken joints, the fluid cells the network owns (fluid_tet.network_cell):
@@ -109,7 +109,6 @@ class FluidToSolidSystem : public System {
   std::string name() const override { return "fluid_to_solid"; }
   Access access() const override;
   void run(const StepContext& ctx) override;  // exchange(), at the end of each window
-  int64_t period() const override { return settings_.substeps; }
   // initial: the exchange at t = 0, before the fluid has felt the solid: only the body-force part
   // (buoyancy). The absorption's reaction is not known until the fluid has stepped with it.
   void exchange(bool initial = false);

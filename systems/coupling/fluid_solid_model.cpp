@@ -59,13 +59,11 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   if (spec.network_inlet) to_fluid_->set_network_wall(well_wall_tets);
   to_solid_ = std::make_unique<FluidToSolidSystem>(store_, settings_, pairs_, fluid.solver().volumes());
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
-    fluid_step_ = &fluid.hand_over_step();
+    fluid_step_ = &fluid.step();
     concurrent_ = std::make_unique<ConcurrentFluidStep>(*fluid_step_);
     // The solid's positions at the last exchange: its pairs serve the window's end, so a restart inside
     // the window finds them again from these (SolidToFluidSystem::rebuild_pairs).
     store_.table(solid::node_table).add<double>("x_at_exchange", 3);
-  } else {
-    fluid.surround_step(to_fluid_.get(), to_solid_.get());
   }
   for (double v : store_.table(solid::tet_table).span<double>("volume0")) solid_volume_ += v;
   // The exchange at t = 0: the fluid's first step sees the solid, and the first window already feels the
@@ -103,44 +101,41 @@ void FluidSolidModel::keep_exchange_positions() {
 }
 
 // The window of solid steps [t_n, t_n+1) starts with the launch of the fluid step t_n -> t_n+1, from what
-// the exchange at t_n (after_step of the window before, or the constructor's at t = 0) gave the solver.
-void FluidSolidModel::before_step(const StepContext& at) {
-  if (!concurrent_ || at.step % settings_.substeps != 0) return;
+// the exchange at t_n (the window before's, or the constructor's at t = 0) gave the solver.
+void FluidSolidModel::launch(const StepContext& at) {
   concurrent_->launch(at.time);
 }
 
-// At the window's end t_n+1: the fluid step must be done (join), then its force goes to the solid for the
-// next window and the solid at t_n+1 goes to the fluid for the next fluid step, as in the sequential
-// coupling but for the solid's time the fluid sees. The launch waits for the next step's before_step, so
-// that between steps (outputs, health checks, a checkpoint at a window's end) no task is running.
-void FluidSolidModel::after_step(const StepContext& taken) {
-  if (!runs_at(settings_.substeps, taken)) return;  // the window ends at another step
-  const int64_t window = (taken.step + 1) / settings_.substeps;
-  const double t_end = static_cast<double>(taken.step + 1) * taken.dt;
-  if (!concurrent_) {
-    // Sequential: the window's exchanges and fluid step ran in the graph. A new mesh gets the solid's
-    // state at once (the same exchange as the graph's, at the same solid state), so outputs, health
-    // checks and checkpoints between windows see a consistent fluid.
-    if (adapter_ && adapter_->due_after(window)) {
-      adapt_fluid_mesh(t_end);
-      to_fluid_->exchange();
-    }
-    return;
-  }
-  concurrent_->join();
+namespace {
+template <class F>
+void timed(SystemTiming& t, F&& fn) {
+  const auto t0 = std::chrono::steady_clock::now();
+  fn();
+  t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++t.calls;
+}
+}  // namespace
+
+// At the window's end t_n+1, once the fluid step is joined: its force goes to the solid for the next
+// window, as in the sequential coupling but for the solid's time the fluid saw.
+void FluidSolidModel::exchange_fluid_to_solid(const StepContext&) {
   store_.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0] = 0;
-  auto timed = [](SystemTiming& t, auto&& fn) {
-    const auto t0 = std::chrono::steady_clock::now();
-    fn();
-    t.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++t.calls;
-  };
   timed(to_solid_time_, [&] { to_solid_->exchange(); });
-  if (adapter_ && adapter_->due_after(window)) adapt_fluid_mesh(t_end);
+}
+
+// The solid at t_n+1 goes to the fluid for its next step. The concurrent coupling keeps the positions the
+// pairs were found at, for a restart inside the next window. In the sequential coupling this follows a
+// remesh only (the graph's own exchange ran before it, on the old mesh): outputs, health checks and
+// checkpoints between windows then see a fluid consistent with the solid.
+void FluidSolidModel::exchange_solid_to_fluid(const StepContext&) {
   timed(to_fluid_time_, [&] {
     to_fluid_->exchange();
-    keep_exchange_positions();
+    if (concurrent_) keep_exchange_positions();
   });
+}
+
+void FluidSolidModel::remesh_fluid(const StepContext& taken) {
+  adapt_fluid_mesh(static_cast<double>(taken.step + 1) * taken.dt);
 }
 
 void FluidSolidModel::adapt_fluid_mesh(double time) {
@@ -156,7 +151,8 @@ void FluidSolidModel::fluid_mesh_changed() {
   to_solid_->set_fluid_volume(fluid_.solver().volumes());
 }
 
-// Mid-window (a checkpoint, the end of a stopped run): the stored fluid state becomes the window's end.
+// The stored fluid state becomes the window's end; mid-window (a checkpoint, the end of a stopped run) it
+// stays marked so, and at the window's end exchange_fluid_to_solid clears the mark.
 void FluidSolidModel::join() {
   if (!concurrent_ || !concurrent_->running()) return;
   concurrent_->join();
@@ -168,7 +164,7 @@ void FluidSolidModel::join() {
 // the graph (Simulation, engine/schedule access_conflict): none may write one of them or read one it
 // writes, and since every fluid column belongs to the fluid's tables, a solid column in this list would be
 // caught the same way. The exchanges, which do read and write both sides, run only after the join.
-Access FluidSolidModel::background_access() const {
+Access FluidSolidModel::access() const {
   return fluid_step_ ? fluid_step_->access() : Access{};
 }
 

@@ -164,56 +164,7 @@ void FluidModel::build_solver(const TetMesh& mesh) {
   }
 }
 
-// P1 gradients and sizes for the per-cell output fields.
-void FluidModel::prepare_cell_geometry() {
-  const auto x = solver_->nodes();
-  const auto conn = solver_->tets();
-  const size_t nn = solver_->node_count(), nt = solver_->volumes().size();
-  grad_.assign(12 * nt, 0.0);
-  h_.assign(nt, 0.0);
-  node_volume_.assign(nn, 0.0);
-  for (size_t t = 0; t < nt; ++t) {
-    const int32_t* n = &conn[4 * t];
-    double e[3][3];
-    for (int a = 0; a < 3; ++a)
-      for (int d = 0; d < 3; ++d) e[a][d] = x[3 * n[a + 1] + d] - x[3 * n[0] + d];
-    // Rows of inverse(E^T) are grad N1..N3 for E = [e1 e2 e3] (columns).
-    const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                       e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                       e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-    double g[4][3];
-    for (int d = 0; d < 3; ++d) {
-      const int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
-      for (int a = 0; a < 3; ++a) {
-        const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
-        g[a + 1][d] = (e[a1][d1] * e[a2][d2] - e[a1][d2] * e[a2][d1]) / det;
-      }
-    }
-    for (int d = 0; d < 3; ++d) g[0][d] = -(g[1][d] + g[2][d] + g[3][d]);
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d) grad_[12 * t + 3 * a + d] = g[a][d];
-    double h2 = 0.0;
-    for (int a = 0; a < 4; ++a)
-      for (int b = a + 1; b < 4; ++b) {
-        double l2 = 0.0;
-        for (int d = 0; d < 3; ++d) l2 += std::pow(x[3 * n[a] + d] - x[3 * n[b] + d], 2);
-        h2 = std::max(h2, l2);
-      }
-    h_[t] = std::sqrt(h2);
-    for (int a = 0; a < 4; ++a) node_volume_[n[a]] += 0.25 * solver_->volumes()[t];
-  }
-}
-
 FluidModel::~FluidModel() = default;
-
-std::vector<System*> FluidModel::systems() {
-  std::vector<System*> out;
-  if (handed_over_) return out;
-  if (before_) out.push_back(before_);
-  out.push_back(step_.get());
-  if (after_) out.push_back(after_);
-  return out;
-}
 
 // Outputs and metrics read the fluid's state from the store, never from the solver: with the concurrent
 // coupling the solver may be mid-step in a task while the run loop writes them (the store holds the last
@@ -221,7 +172,9 @@ std::vector<System*> FluidModel::systems() {
 void FluidModel::cell_fields() {
   const auto u = store_.table(fluid::node_table).span<double>("velocity");
   const auto conn = solver_->tets();
-  const size_t nt = h_.size();
+  const auto grad = solver_->gradients();
+  const auto h = solver_->element_sizes();
+  const size_t nt = h.size();
   divergence_.assign(nt, 0.0);
   cfl_.assign(nt, 0.0);
   for (size_t t = 0; t < nt; ++t) {
@@ -229,19 +182,20 @@ void FluidModel::cell_fields() {
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d) {
         const double ua = u[3 * static_cast<size_t>(conn[4 * t + a]) + d];
-        div += grad_[12 * t + 3 * a + d] * ua;
+        div += grad[12 * t + 3 * a + d] * ua;
         ubar[d] += 0.25 * ua;
       }
     divergence_[t] = div;
-    cfl_[t] = std::sqrt(ubar[0] * ubar[0] + ubar[1] * ubar[1] + ubar[2] * ubar[2]) * spec_.dt / h_[t];
+    cfl_[t] = std::sqrt(ubar[0] * ubar[0] + ubar[1] * ubar[1] + ubar[2] * ubar[2]) * spec_.dt / h[t];
   }
 }
 
 double FluidModel::kinetic_energy() const {
   const auto u = store_.table(fluid::node_table).span<double>("velocity");
   double e = 0.0;
-  for (size_t n = 0; n < node_volume_.size(); ++n)
-    e += node_volume_[n] * (u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
+  const auto node_volume = solver_->node_volumes();
+  for (size_t n = 0; n < node_volume.size(); ++n)
+    e += node_volume[n] * (u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
   return 0.5 * spec_.density * e;
 }
 
@@ -390,7 +344,6 @@ int64_t FluidModel::mesh_revision() const {
 void FluidModel::restored(const StepContext& at) {
   if (spec_.adapt) {  // the checkpoint's mesh, maybe not the scene's first one
     build_solver(mesh_from_store());
-    prepare_cell_geometry();
   }
   const Table& nodes = store_.table(fluid::node_table);
   const bool previous = store_.table(fluid::step_table).span<const uint8_t>("has_previous")[0] != 0;

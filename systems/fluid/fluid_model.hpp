@@ -29,15 +29,10 @@ class FluidModel : public Model {
   ~FluidModel() override;
 
   std::string name() const override { return "fluid"; }
-  std::vector<System*> systems() override;
-  // The coupling's exchange systems run just before and just after the fluid step (systems/coupling).
-  void surround_step(System* before, System* after) { before_ = before, after_ = after; }
-  // The concurrent coupling steps the fluid itself, beside the graph (systems/coupling/
-  // concurrent_fluid_step.hpp): the fluid then puts no system into the graph.
-  FluidStepSystem& hand_over_step() {
-    handed_over_ = true;
-    return *step_;
-  }
+  // The fluid's step (once per window of substeps() run steps): a system of the step graph, or, with the
+  // concurrent coupling, work beside it (systems/coupling/concurrent_fluid_step.hpp). The step script
+  // (systems/step_script.cpp) places it.
+  FluidStepSystem& step() { return *step_; }
   std::optional<double> required_dt() const override { return spec_.dt / static_cast<double>(substeps_); }
   std::optional<std::string> check_health(const StepContext& after) override;
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
@@ -63,7 +58,6 @@ class FluidModel : public Model {
  private:
   void cell_fields();                      // divergence_ and cfl_ from the current velocity
   void build_solver(const TetMesh& mesh);  // a new solver on `mesh` (in place of the old one, if any)
-  void prepare_cell_geometry();            // grad_, h_, node_volume_ from the solver's mesh
   void store_mesh(const TetMesh& mesh);    // the fluid tables' rows, mesh columns and boundary faces
   TetMesh mesh_from_store() const;         // fluid.adapt: the mesh the store holds
 
@@ -72,12 +66,8 @@ class FluidModel : public Model {
   int64_t substeps_;
   std::unique_ptr<fluid::FluidSolver> solver_;
   std::unique_ptr<FluidStepSystem> step_;
-  System* before_ = nullptr;
-  System* after_ = nullptr;
-  bool handed_over_ = false;
-  std::vector<std::string> surface_names_;      // the mesh's (a remesh keeps them)
-  std::vector<double> grad_, h_, node_volume_;  // P1 gradients (12 per tet), longest edge, lumped volume
-  std::vector<double> divergence_, cfl_;        // output scratch
+  std::vector<std::string> surface_names_;  // the mesh's (a remesh keeps them)
+  std::vector<double> divergence_, cfl_;    // output scratch
 };
 
 }  // namespace rift

@@ -70,7 +70,6 @@ void FluidModel::store_mesh(const TetMesh& mesh) {
       fs[f] = mesh.triangle_surface[f];
     }
   }
-  prepare_cell_geometry();
 }
 
 // The mesh as the store holds it (the last remesh's, or the checkpoint's on a restart).

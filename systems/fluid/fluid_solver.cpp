@@ -115,10 +115,11 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
     v->assign(3 * nn, 0.0);
   for (auto* v : {&visc_diag_, &p_, &p_iter_, &rhs_c_, &x_c_, &prhs_, &cont_res_, &phi_}) v->assign(nn, 0.0);
   corr_.assign(3 * nn, 0.0);
-  sigma_.assign(nt, 0.0);
-  target_.assign(3 * nt, 0.0);
+  zero_sigma_.assign(nt, 0.0);
+  zero_target_.assign(3 * nt, 0.0);
+  zero_dilatation_.assign(nt, 0.0);
+  sigma_ = zero_sigma_, target_ = zero_target_, dilatation_ = zero_dilatation_;
   source_.assign(3 * nt, 0.0);
-  dilatation_.assign(nt, 0.0);
   continuity_weight_.assign(nt, 1.0);
   volume_source_.assign(nt, 0.0);
   for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
@@ -148,8 +149,21 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
 }
 
 FluidSolver::~FluidSolver() = default;
-FluidSolver::FluidSolver(FluidSolver&&) noexcept = default;
+FluidSolver::FluidSolver(FluidSolver&&) noexcept =
+    default;  // the spans follow: a vector's move keeps its buffer
 FluidSolver& FluidSolver::operator=(FluidSolver&&) noexcept = default;
+
+void FluidSolver::read_coupling_inputs(std::span<const double> sigma, std::span<const double> target,
+                                       std::span<const double> dilatation) {
+  const size_t nt = volume_.size();
+  if (sigma.size() != nt || target.size() != 3 * nt || (!dilatation.empty() && dilatation.size() != nt))
+    throw std::logic_error("FluidSolver::read_coupling_inputs: " + std::to_string(sigma.size()) + ", " +
+                           std::to_string(target.size()) + " and " + std::to_string(dilatation.size()) +
+                           " values for " + std::to_string(nt) + " tets");
+  sigma_ = sigma;
+  target_ = target;
+  dilatation_ = dilatation.empty() ? std::span<const double>(zero_dilatation_) : dilatation;
+}
 
 void FluidSolver::set_velocity(const VectorField& u0) {
   const size_t nn = node_count();

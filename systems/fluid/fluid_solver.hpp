@@ -126,15 +126,28 @@ class FluidSolver {
   FluidSolver(FluidSolver&&) noexcept;
   FluidSolver& operator=(FluidSolver&&) noexcept;  // a remeshed fluid (FluidModel::remesh)
 
-  // Coupling hooks, one value per tet, zero by default: absorption sigma [kg/(m^3 s)] (implicit, relaxes
-  // u towards target), target velocity u_s (3 per tet), momentum source s [N/m^3] (3 per tet).
-  // Call absorption_changed() after writing sigma (the pressure operator depends on it).
-  std::span<double> sigma() { return sigma_; }
-  std::span<double> target_velocity() { return target_; }
+  // Coupling inputs, one value per tet, zero by default: absorption sigma [kg/(m^3 s)] (implicit, relaxes
+  // u towards target), target velocity u_s (3 per tet), and the divergence the continuity equation
+  // allows, div u = s [1/s] (the immersed solid's rate of volume change per unit volume). The solver
+  // reads them in place where the coupling keeps them (the store's fluid_tet columns, systems/coupling),
+  // never copied: the spans must hold nt, 3 nt and nt values (an empty dilatation keeps the zeros) and
+  // stay valid and unchanged while a step runs. Call absorption_changed() after their values change (the
+  // pressure operator depends on sigma).
+  void read_coupling_inputs(std::span<const double> sigma, std::span<const double> target,
+                            std::span<const double> dilatation);
+  std::span<const double> absorption() const { return sigma_; }  // the sigma the solver reads
+  // The solver's own input arrays (zeros at construction), for a solver used on its own (tests, studies):
+  // each call points the solver back at that array, which the caller then fills.
+  std::span<double> own_sigma() {
+    sigma_ = zero_sigma_;
+    return zero_sigma_;
+  }
+  std::span<double> own_target_velocity() {
+    target_ = zero_target_;
+    return zero_target_;
+  }
+  // Momentum source s [N/m^3] (3 per tet), zero by default.
   std::span<double> source() { return source_; }
-  // The divergence the continuity equation allows per tet, div u = s [1/s] (the immersed solid's rate of
-  // volume change per unit volume; zero by default).
-  std::span<double> dilatation() { return dilatation_; }
   // The weight of the continuity equation per tet, w in [0, 1] (1 by default). Where w < 1 the equation
   // is w div u = w s, and the divergence of (1 - w) c (f - grad p) (c = 1 / (rho/dt + sigma): the flux of
   // the fluid relative to the target) takes the rest of the row. With w = 1 - alpha (alpha: the fraction
@@ -178,6 +191,11 @@ class FluidSolver {
   std::span<const double> nodes() const { return x_; }     // 3 per node
   std::span<const int32_t> tets() const { return tet_nodes_; }
   std::span<const double> volumes() const { return volume_; }
+  // The P1 shape-function gradients (12 per tet) and longest edges (1 per tet) of the mesh
+  // (kernels::p1_prepare), fixed until the mesh changes.
+  std::span<const double> gradients() const { return grad_; }
+  std::span<const double> element_sizes() const { return h_; }
+  std::span<const double> node_volumes() const { return node_volume_; }  // lumped: a quarter of each tet
   const FluidSettings& settings() const { return settings_; }
   size_t node_count() const { return x_.size() / 3; }
 
@@ -226,7 +244,10 @@ class FluidSolver {
   // Fields.
   std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
   std::vector<double> eta_;  // projected convective derivative of w (3 per node)
-  std::vector<double> sigma_, target_, source_, dilatation_, continuity_weight_, volume_source_;
+  std::vector<double> zero_sigma_, zero_target_,
+      zero_dilatation_;                                  // the inputs until the coupling gives its own
+  std::span<const double> sigma_, target_, dilatation_;  // read_coupling_inputs
+  std::vector<double> source_, continuity_weight_, volume_source_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
   std::vector<double> subscale_, subscale_rhs_;  // u' (3 per tet) and its explicit continuity term

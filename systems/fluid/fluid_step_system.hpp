@@ -19,7 +19,6 @@ class FluidStepSystem : public System {
   std::string name() const override { return "fluid_step"; }
   Access access() const override;
   void run(const StepContext& ctx) override;  // on the last step of each window: advance, then publish
-  int64_t period() const override { return every_; }
 
   // The two halves of run, for the concurrent coupling (systems/coupling/concurrent_fluid_step.hpp), which
   // advances in a task beside the solid's sub-steps and publishes after joining it. advance touches only

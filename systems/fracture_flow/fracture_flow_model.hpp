@@ -17,7 +17,7 @@ class FractureFlowModel : public Model {
   // Before the step graph is built: makes the solid read solid_node.crack_force.
   FractureFlowModel(Store& store, SolidModel& solid, const TetMesh& mesh, const FractureFlowSpec& spec);
   std::string name() const override { return "fracture_flow"; }
-  std::vector<System*> systems() override { return {system_.get()}; }
+  System* system() { return system_.get(); }  // the network's step (systems/step_script.cpp places it)
   void restored(const StepContext& at) override { system_->restored(); }
   std::optional<std::string> check_health(const StepContext& after) override;
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;

@@ -43,7 +43,7 @@ TEST(FluidAllocation, StepsAllocateNothing) {
                                    {"zmax", BoundaryKind::free_slip, {}, {}}};
     FluidSolver s(structured_box(spec), st, bcs);
     s.set_body_force([](const Vec3& x, double) { return Vec3{0.0, 0.0, -x[2]}; });
-    for (size_t t = 0; t < s.sigma().size(); ++t) s.sigma()[t] = t % 3 == 0 ? 10.0 : 0.0;
+    for (size_t t = 0; t < s.own_sigma().size(); ++t) s.own_sigma()[t] = t % 3 == 0 ? 10.0 : 0.0;
     s.absorption_changed();
     s.step();
     s.step();

@@ -55,9 +55,9 @@ double fluid_pressure_deviation(bool weighted, double p_in, double eps) {
   for (size_t t = 0; t < cx.size(); ++t) {
     solid[t] = cx[t] > 1.0 / 3.0;
     if (!solid[t]) continue;
-    s.sigma()[t] = sigma;
+    s.own_sigma()[t] = sigma;
     const double r[3] = {cx[t] - 2.0 / 3.0, cy[t] - 0.5, cz[t] - 0.5};
-    for (int d = 0; d < 3; ++d) s.target_velocity()[3 * t + d] = eps * r[d];
+    for (int d = 0; d < 3; ++d) s.own_target_velocity()[3 * t + d] = eps * r[d];
     if (weighted) s.continuity_weight()[t] = 0.0;
   }
   s.absorption_changed();
@@ -108,7 +108,7 @@ TEST(FluidContinuityWeight, HydrostaticBoxStaysExactWithTheWeights) {
   const std::vector<double> cx = centroid_x(s, 0);
   for (size_t t = 0; t < cx.size(); ++t) {
     const double alpha = cx[t] < 0.5 ? 1.0 : (cx[t] < 0.6 ? 0.4 : 0.0);
-    s.sigma()[t] = 1e5 * alpha;
+    s.own_sigma()[t] = 1e5 * alpha;
     s.continuity_weight()[t] = 1.0 - alpha;
   }
   s.absorption_changed();

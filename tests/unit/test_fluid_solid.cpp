@@ -19,6 +19,7 @@
 #include "kernels/fluid_solid_exchange.hpp"
 #include "kernels/tet_intersection.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
+#include "systems/fluid/fluid_model.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/simulation.hpp"
 #include "systems/solid_tables.hpp"
@@ -257,6 +258,26 @@ TEST(FluidSolidRun, ANeutrallyBuoyantBlockStaysAtRest) {
   // Weight and buoyancy cancel to round-off: g dt_total = 0.2 m/s would be the speed without the fluid.
   EXPECT_LT(speed, 1e-9);
   EXPECT_GT(store.table(coupling::state_table).span<int64_t>("exchanges")[0], 3);
+}
+
+// The store is the fluid's only copy of what the coupling hands it: the solver reads the absorption (and
+// with it the target velocity) where the exchange wrote them, at t = 0 and after every window.
+TEST(FluidSolidRun, TheFluidReadsTheCouplingsColumnsInPlace) {
+  Simulation sim(
+      block_scene({"solid.initial_velocity=[{velocity: [0.05, 0, 0.1]}]", "fluid_solid.dilatation=true"}),
+      quiet());
+  const FluidModel* fluid = nullptr;
+  for (const auto& m : sim.world().models)
+    if (auto* f = dynamic_cast<const FluidModel*>(m.get())) fluid = f;
+  ASSERT_NE(fluid, nullptr);
+  const Table& tets = sim.world().store.table(fluid::tet_table);
+  for (int window = 0; window < 3; ++window) {
+    EXPECT_EQ(fluid->solver().absorption().data(), tets.span<const double>("absorption").data());
+    for (int64_t k = 0; k < fluid->substeps(); ++k) sim.step_once();
+  }
+  double largest = 0.0;
+  for (double s : fluid->solver().absorption()) largest = std::max(largest, s);
+  EXPECT_GT(largest, 0.0);  // the block is seen
 }
 
 // fluid_solid.relaxation_time tau: every cell's absorption is rho_f alpha / tau at any fluid.dt (beta =

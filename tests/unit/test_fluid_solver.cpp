@@ -53,9 +53,9 @@ TEST(FluidSolver, AbsorptionTargetAndSourceGiveTheDarcySolution) {
     st.picard_tol = 1e-10;
     const double g = 3.0, sigma = 2000.0, us = 0.25, src = 1.0;  // G = 6 Pa / 2 m
     FluidSolver s(channel(), st, plug_bcs(g * 2.0));
-    for (double& v : s.sigma()) v = sigma;
-    for (size_t t = 0; t < s.sigma().size(); ++t) {
-      s.target_velocity()[3 * t] = us;
+    for (double& v : s.own_sigma()) v = sigma;
+    for (size_t t = 0; t < s.own_sigma().size(); ++t) {
+      s.own_target_velocity()[3 * t] = us;
       s.source()[3 * t] = src;
     }
     s.absorption_changed();
@@ -88,7 +88,7 @@ TEST(FluidSolver, PressureRampDrivesTheDiscreteDarcyRecursion) {
   std::vector<FluidBoundary> bcs = plug_bcs(0.0);
   bcs[0].pressure = [&](const Vec3&, double t) { return p_in(t); };
   FluidSolver s(channel(), st, bcs);
-  for (double& v : s.sigma()) v = sigma;
+  for (double& v : s.own_sigma()) v = sigma;
   s.absorption_changed();
   double u = 0.0;
   for (int i = 0; i < 5; ++i) {
@@ -115,10 +115,10 @@ TEST(FluidSolver, HydrostaticBoxStaysAtRestWithAJumpInSigma) {
   s.set_body_force([=](const Vec3&, double) { return Vec3{0.0, 0.0, -1000.0 * g}; });
   const auto tets = s.tets();
   const auto x = s.nodes();
-  for (size_t t = 0; t < s.sigma().size(); ++t) {
+  for (size_t t = 0; t < s.own_sigma().size(); ++t) {
     double cx = 0.0;
     for (int a = 0; a < 4; ++a) cx += 0.25 * x[3 * static_cast<size_t>(tets[4 * t + a])];
-    s.sigma()[t] = cx < 0.5 ? 1e6 : 0.0;
+    s.own_sigma()[t] = cx < 0.5 ? 1e6 : 0.0;
   }
   s.absorption_changed();
   FluidStepReport rep;

@@ -49,17 +49,17 @@ inline std::vector<double> solid_fraction(const TetMesh& fluid, const TetMesh& s
 
 // Sets sigma_K = sigma0 alpha_K on the solver (a held solid).
 inline void hold_solid(fluid::FluidSolver& solver, const std::vector<double>& alpha, double sigma0) {
-  auto sigma = solver.sigma();
+  auto sigma = solver.own_sigma();
   for (size_t k = 0; k < alpha.size(); ++k) sigma[k] = sigma0 * alpha[k];
   solver.absorption_changed();
 }
 
 // The absorption's reaction on a held solid: the force the fluid exerts on it.
-inline std::array<double, 3> absorbed_force(fluid::FluidSolver& solver) {
+inline std::array<double, 3> absorbed_force(const fluid::FluidSolver& solver) {
   const auto tets = solver.tets();
   const auto vol = solver.volumes();
   const auto u = solver.velocity();
-  const auto sigma = solver.sigma();
+  const auto sigma = solver.absorption();
   std::array<double, 3> f{0, 0, 0};
   for (size_t k = 0; k < vol.size(); ++k) {
     if (sigma[k] == 0.0) continue;

@@ -1,0 +1,87 @@
+#include "engine/schedule/step_plan.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/core/error.hpp"
+
+namespace rift {
+
+namespace {
+void check_every(const std::string& stage, int64_t every) {
+  if (every < 1) throw Error(fmt::format("internal: step stage '{}' runs every {} steps", stage, every));
+}
+}  // namespace
+
+StepPlan& StepPlan::graph(std::string name, std::vector<System*> systems, int64_t every) {
+  check_every(name, every);
+  std::erase(systems, nullptr);
+  if (systems.empty()) return *this;
+  StepStage stage;
+  stage.name = std::move(name);
+  stage.every = every;
+  stage.systems = std::move(systems);
+  stages_.push_back(std::move(stage));
+  return *this;
+}
+
+StepPlan& StepPlan::beside(std::string name, BackgroundWork& work, int64_t every) {
+  check_every(name, every);
+  StepStage stage;
+  stage.kind = StepStage::Kind::beside;
+  stage.name = std::move(name);
+  stage.every = every;
+  stage.work = &work;
+  stages_.push_back(std::move(stage));
+  return *this;
+}
+
+StepPlan& StepPlan::after(std::string name, int64_t every, std::function<void(const StepContext&)> run) {
+  check_every(name, every);
+  StepStage stage;
+  stage.kind = StepStage::Kind::after;
+  stage.name = std::move(name);
+  stage.every = every;
+  stage.run = std::move(run);
+  stages_.push_back(std::move(stage));
+  return *this;
+}
+
+std::vector<System*> StepPlan::graph_systems() const {
+  std::vector<System*> all;
+  for (const auto& s : stages_)
+    if (s.kind == StepStage::Kind::graph) all.insert(all.end(), s.systems.begin(), s.systems.end());
+  return all;
+}
+
+std::vector<int64_t> StepPlan::graph_periods() const {
+  std::vector<int64_t> all;
+  for (const auto& s : stages_)
+    if (s.kind == StepStage::Kind::graph) all.insert(all.end(), s.systems.size(), s.every);
+  return all;
+}
+
+std::vector<BackgroundWork*> StepPlan::background() const {
+  std::vector<BackgroundWork*> all;
+  for (const auto& s : stages_)
+    if (s.kind == StepStage::Kind::beside) all.push_back(s.work);
+  return all;
+}
+
+std::string StepPlan::script() const {
+  std::string out;
+  int number = 0;
+  for (const auto& s : stages_) {
+    if (!out.empty()) out += "\n";
+    out += fmt::format("{:>3}. {}", ++number, s.name);
+    if (s.kind == StepStage::Kind::graph) {
+      out += ":";
+      for (size_t i = 0; i < s.systems.size(); ++i) out += (i ? ", " : " ") + s.systems[i]->name();
+    } else {
+      out += s.kind == StepStage::Kind::beside ? " (beside the graph)" : " (after the graph)";
+    }
+    if (s.every > 1) out += fmt::format(" | every {} steps", s.every);
+  }
+  return out;
+}
+
+}  // namespace rift

@@ -308,27 +308,27 @@ void kill_at_step_if_asked(int64_t step) {
 
 }  // namespace
 
-// The plan's stages around the graph at step `ctx`. Before the graph (beside): each background stage whose
-// window starts here launches. After it: in script order, each background stage whose window ends here
-// joins and each after-graph stage due runs. Inside the graph's arena when work runs beside the graph
-// (its task must live there).
-void RunLoop::run_stages(StepStage::Kind when, const StepContext& ctx) {
-  auto run = [&] {
+// The plan's stages around the graph at step `ctx`, inside the graph's arena when work runs beside the
+// graph (its task must live there). Before the graph: each beside stage whose window starts here launches.
+void RunLoop::start_windows(const StepContext& ctx) {
+  in_stage_arena([&] {
+    for (const StepStage& stage : world_->plan.stages())
+      if (stage.kind == StepStage::Kind::beside && starts_window(stage.every, ctx)) stage.work->launch(ctx);
+  });
+}
+
+// After the graph, in script order: each beside stage whose window ends here joins, and each after stage
+// due runs.
+void RunLoop::end_windows(const StepContext& ctx) {
+  in_stage_arena([&] {
     for (const StepStage& stage : world_->plan.stages()) {
-      if (when == StepStage::Kind::beside) {
-        if (stage.kind == StepStage::Kind::beside && starts_window(stage.every, ctx)) stage.work->launch(ctx);
-      } else if (stage.kind != StepStage::Kind::graph && runs_at(stage.every, ctx)) {
-        if (stage.kind == StepStage::Kind::beside)
-          stage.work->join();
-        else
-          stage.run(ctx);
-      }
+      if (stage.kind == StepStage::Kind::graph || !runs_at(stage.every, ctx)) continue;
+      if (stage.kind == StepStage::Kind::beside)
+        stage.work->join();
+      else
+        stage.run(ctx);
     }
-  };
-  if (has_background_)
-    graph_->in_arena(run);
-  else
-    run();
+  });
 }
 
 void RunLoop::step_once() {
@@ -336,10 +336,10 @@ void RunLoop::step_once() {
   const bool observed =
       observe_every_step_ || observe_next_ || (step_ + 1) % kObservedEvery == 0 || step_ + 1 == total_steps_;
   const StepContext ctx{step_, time(), dt_, false, observed};
-  run_stages(StepStage::Kind::beside, ctx);  // launches the windows that start here
+  start_windows(ctx);
   graph_->run_step(ctx);
   ++step_;
-  run_stages(StepStage::Kind::after, ctx);  // joins and after-graph work of the windows that end here
+  end_windows(ctx);
   const StepContext after{step_, time(), dt_, step_ == total_steps_};
   // Every guard that fires at this step is reported: one model's failure is often another's symptom (a
   // fluid step that does not converge while the coupling's force oscillates and grows).

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/io/run_summary.hpp"
@@ -79,7 +80,15 @@ class RunLoop {
   void write_summary(const RunResult& result) const;
   void log_timing_table() const;
   void check_background_access();
-  void run_stages(StepStage::Kind when, const StepContext& ctx);
+  void start_windows(const StepContext& ctx);  // the plan's stages before the graph
+  void end_windows(const StepContext& ctx);    // and after it
+  template <class F>
+  void in_stage_arena(F&& fn) {
+    if (has_background_)
+      graph_->in_arena(std::forward<F>(fn));
+    else
+      fn();
+  }
   void remove_killed_writers_files();
   void join_background();
   void join_background_quietly() noexcept;

@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
 
   SceneArgs graph_args;
   int graph_threads = 1;
-  auto* graph_cmd = app.add_subcommand("graph", "Print the step's task graph as Graphviz DOT");
+  auto* graph_cmd = app.add_subcommand(
+      "graph", "Print the step: its script of stages (a DOT comment), then its task graph as Graphviz DOT");
   graph_cmd->add_option("scene", graph_args.scene, "scene file (YAML)");
   graph_cmd->add_option("--set", graph_args.overrides, "override a scene value (repeatable)");
   graph_cmd->add_option("--threads,-j", graph_threads, "worker threads")->check(CLI::Range(1, 1024));

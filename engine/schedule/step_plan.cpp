@@ -6,44 +6,26 @@
 
 namespace rift {
 
-namespace {
-void check_every(const std::string& stage, int64_t every) {
-  if (every < 1) throw Error(fmt::format("internal: step stage '{}' runs every {} steps", stage, every));
-}
-}  // namespace
-
-StepPlan& StepPlan::graph(std::string name, std::vector<System*> systems, int64_t every) {
-  check_every(name, every);
-  std::erase(systems, nullptr);
-  if (systems.empty()) return *this;
-  StepStage stage;
-  stage.name = std::move(name);
-  stage.every = every;
-  stage.systems = std::move(systems);
+StepPlan& StepPlan::add(StepStage stage) {
+  if (stage.every < 1)
+    throw Error(fmt::format("internal: step stage '{}' runs every {} steps", stage.name, stage.every));
   stages_.push_back(std::move(stage));
   return *this;
+}
+
+StepPlan& StepPlan::graph(std::string name, std::vector<System*> systems, int64_t every) {
+  std::erase(systems, nullptr);
+  StepStage stage{StepStage::Kind::graph, std::move(name), every, std::move(systems)};
+  if (stage.systems.empty()) return *this;  // the scene has none of them
+  return add(std::move(stage));
 }
 
 StepPlan& StepPlan::beside(std::string name, BackgroundWork& work, int64_t every) {
-  check_every(name, every);
-  StepStage stage;
-  stage.kind = StepStage::Kind::beside;
-  stage.name = std::move(name);
-  stage.every = every;
-  stage.work = &work;
-  stages_.push_back(std::move(stage));
-  return *this;
+  return add({StepStage::Kind::beside, std::move(name), every, {}, &work});
 }
 
 StepPlan& StepPlan::after(std::string name, int64_t every, std::function<void(const StepContext&)> run) {
-  check_every(name, every);
-  StepStage stage;
-  stage.kind = StepStage::Kind::after;
-  stage.name = std::move(name);
-  stage.every = every;
-  stage.run = std::move(run);
-  stages_.push_back(std::move(stage));
-  return *this;
+  return add({StepStage::Kind::after, std::move(name), every, {}, nullptr, std::move(run)});
 }
 
 std::vector<System*> StepPlan::graph_systems() const {

@@ -62,6 +62,7 @@ class StepPlan {
   std::string script() const;
 
  private:
+  StepPlan& add(StepStage stage);  // checks the window
   std::vector<StepStage> stages_;
 };
 

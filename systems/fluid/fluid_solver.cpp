@@ -115,10 +115,10 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
     v->assign(3 * nn, 0.0);
   for (auto* v : {&visc_diag_, &p_, &p_iter_, &rhs_c_, &x_c_, &prhs_, &cont_res_, &phi_}) v->assign(nn, 0.0);
   corr_.assign(3 * nn, 0.0);
-  zero_sigma_.assign(nt, 0.0);
-  zero_target_.assign(3 * nt, 0.0);
-  zero_dilatation_.assign(nt, 0.0);
-  sigma_ = zero_sigma_, target_ = zero_target_, dilatation_ = zero_dilatation_;
+  own_sigma_.assign(nt, 0.0);
+  own_target_.assign(3 * nt, 0.0);
+  own_dilatation_.assign(nt, 0.0);
+  sigma_ = own_sigma_, target_ = own_target_, dilatation_ = own_dilatation_;
   source_.assign(3 * nt, 0.0);
   continuity_weight_.assign(nt, 1.0);
   volume_source_.assign(nt, 0.0);
@@ -149,8 +149,8 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
 }
 
 FluidSolver::~FluidSolver() = default;
-FluidSolver::FluidSolver(FluidSolver&&) noexcept =
-    default;  // the spans follow: a vector's move keeps its buffer
+// The input spans move with the vectors they view: a vector's move keeps its buffer.
+FluidSolver::FluidSolver(FluidSolver&&) noexcept = default;
 FluidSolver& FluidSolver::operator=(FluidSolver&&) noexcept = default;
 
 void FluidSolver::read_coupling_inputs(std::span<const double> sigma, std::span<const double> target,
@@ -162,7 +162,7 @@ void FluidSolver::read_coupling_inputs(std::span<const double> sigma, std::span<
                            " values for " + std::to_string(nt) + " tets");
   sigma_ = sigma;
   target_ = target;
-  dilatation_ = dilatation.empty() ? std::span<const double>(zero_dilatation_) : dilatation;
+  dilatation_ = dilatation.empty() ? std::span<const double>(own_dilatation_) : dilatation;
 }
 
 void FluidSolver::set_velocity(const VectorField& u0) {

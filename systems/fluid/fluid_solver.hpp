@@ -139,12 +139,12 @@ class FluidSolver {
   // The solver's own input arrays (zeros at construction), for a solver used on its own (tests, studies):
   // each call points the solver back at that array, which the caller then fills.
   std::span<double> own_sigma() {
-    sigma_ = zero_sigma_;
-    return zero_sigma_;
+    sigma_ = own_sigma_;
+    return own_sigma_;
   }
   std::span<double> own_target_velocity() {
-    target_ = zero_target_;
-    return zero_target_;
+    target_ = own_target_;
+    return own_target_;
   }
   // Momentum source s [N/m^3] (3 per tet), zero by default.
   std::span<double> source() { return source_; }
@@ -244,9 +244,8 @@ class FluidSolver {
   // Fields.
   std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
   std::vector<double> eta_;  // projected convective derivative of w (3 per node)
-  std::vector<double> zero_sigma_, zero_target_,
-      zero_dilatation_;                                  // the inputs until the coupling gives its own
-  std::span<const double> sigma_, target_, dilatation_;  // read_coupling_inputs
+  std::vector<double> own_sigma_, own_target_, own_dilatation_;  // zeros until a caller fills them
+  std::span<const double> sigma_, target_, dilatation_;          // read_coupling_inputs
   std::vector<double> source_, continuity_weight_, volume_source_;
   bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
   std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;

@@ -21,11 +21,7 @@ namespace rift {
 namespace {
 
 RunOptions quiet(int threads = 1) {
-  RunOptions o;
-  o.progress = false;
-  o.write_output = false;
-  o.threads = threads;
-  return o;
+  return test::quiet_options(threads);
 }
 
 Scene concurrent_block(std::vector<std::string> overrides = {}) {

@@ -9,6 +9,15 @@
 
 namespace rift::test {
 
+// Options of a run in memory: no output folder, no progress line.
+inline RunOptions quiet_options(int threads = 1) {
+  RunOptions o;
+  o.write_output = false;
+  o.progress = false;
+  o.threads = threads;
+  return o;
+}
+
 inline RunResult run_scene(const Scene& scene, const std::filesystem::path& dir, int threads,
                            std::optional<int64_t> stop = {}, bool restart = false) {
   RunOptions o;

@@ -12,6 +12,7 @@
 #include "engine/run_loop.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "systems/world_builder.hpp"
+#include "tests/unit/test_run_support.hpp"
 
 using namespace rift;
 
@@ -59,14 +60,6 @@ Scene ten_steps() {
   return *r.scene;
 }
 
-RunOptions quiet(int threads = 1) {
-  RunOptions o;
-  o.write_output = false;
-  o.progress = false;
-  o.threads = threads;
-  return o;
-}
-
 }  // namespace
 
 TEST(StepPlan, KeepsScriptOrderDropsAbsentSystemsAndGivesEachItsWindow) {
@@ -96,7 +89,7 @@ TEST(StepPlan, TheRunLoopLaunchesBesideWorkAtAWindowsStartAndJoinsItBeforeTheAft
     std::vector<std::string> log;
     Recorder every("every", {{}, {"t.x"}}, log), windowed("windowed", {{"t.x"}, {"t.y"}}, log);
     RecordedWork work(log, {{"w.in"}, {"w.out"}});
-    RunLoop run(ten_steps(), quiet(threads), [&](const Scene&) {
+    RunLoop run(ten_steps(), test::quiet_options(threads), [&](const Scene&) {
       auto world = std::make_unique<World>();
       world->plan.graph("every step", {&every})
           .graph("window", {&windowed}, 5)
@@ -118,7 +111,7 @@ TEST(StepPlan, ARunRefusesWorkBesideTheGraphThatAGraphSystemAlsoWrites) {
   Recorder writer("writer", {{}, {"w.in"}}, log);
   RecordedWork work(log, {{"w.in"}, {"w.out"}});
   try {
-    RunLoop run(ten_steps(), quiet(), [&](const Scene&) {
+    RunLoop run(ten_steps(), test::quiet_options(), [&](const Scene&) {
       auto world = std::make_unique<World>();
       world->plan.graph("writes what the work reads", {&writer}).beside("beside", work, 5);
       return world;

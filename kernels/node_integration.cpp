@@ -25,7 +25,7 @@ constexpr size_t kPrefetchAhead = 8;
 }
 
 // The leapfrog update of node n from its forces per source (f[0] tets, f[1] joints, f[2] external, to which
-// it adds the per-node external columns), with the work booked into r. Damped is a template argument so
+// it adds the node rows), with the work booked into r. Damped is a template argument so
 // the undamped pass keeps its instructions (and bits) exactly; WriteForce so the pass without a force
 // output has no branch for it. Shared by the slot-list pass and the private-tet pass.
 struct Leapfrog {
@@ -40,13 +40,12 @@ struct Leapfrog {
 template <bool Damped, bool WriteForce>
 [[gnu::always_inline]] inline void advance_node(const NodeIntegrationArgs& a, const Leapfrog& lf, size_t n,
                                                 double f[3][3], NodeStepResult& r) {
-  if (!a.external_node_force.empty())
-    for (int c = 0; c < 3; ++c) f[2][c] += a.external_node_force[3 * n + c];
-  if (!a.crack_node_force.empty())
-    for (int c = 0; c < 3; ++c) f[2][c] += a.crack_node_force[3 * n + c];
   double fc[3] = {0.0, 0.0, 0.0};
-  if (!a.node_force.empty())
-    for (int c = 0; c < 3; ++c) fc[c] = a.node_force[3 * n + c];
+  for (size_t k = 0; k < a.node_row_count; ++k) {
+    const double* row = a.node_rows[k].force.data() + 3 * n;
+    double* to = a.node_rows[k].internal ? fc : f[2];
+    for (int c = 0; c < 3; ++c) to[c] += row[c];
+  }
   const double w = a.inv_mass[n], m = a.mass[n];
   bool finite = true;
   for (int c = 0; c < 3; ++c) {

@@ -2,7 +2,8 @@
 // The node pass of an explicit step, fused so node arrays are streamed once:
 //   1. gather: the total force on a node is the sum of the corner forces that elements and loads
 //      wrote into their own rows (each node lists its "slots"; the order is fixed at set-up, so the
-//      sum is bitwise identical on any thread count, and no atomics are needed);
+//      sum is bitwise identical on any thread count, and no atomics are needed), then the rows that
+//      producers gathered per node themselves (NodeIntegrationArgs::node_rows), in a fixed order;
 //   2. central difference (leapfrog): v(t+dt/2) = v(t-dt/2) + dt (f/m + g);  x(t+dt) = x(t) + dt v(t+dt/2);
 //      held components take the prescribed velocity of their boundary condition instead;
 //   3. work: each force source's work over the step, f(t) . dx with dx = dt (v(t-dt/2) + v(t+dt/2)) / 2
@@ -37,25 +38,26 @@ struct NodeIntegrationArgs {
   std::span<const uint8_t> free_mask;      // 3 per node: 1 integrate, 0 held at the prescribed velocity
   std::span<const int32_t> held_velocity;  // 3 per node: condition index per component (-1: velocity 0)
   std::span<const double> prescribed;      // 3 per boundary condition: velocity at t + dt/2
-  // 3 per node, or empty: forces gathered per node by a producer whose pairs change between steps
-  // (contact), internal like sources 0 and 1; their work is booked as work[3].
-  std::span<const double> node_force = {};
   // c [1/s]: a drag -c m v on every free component (dynamic relaxation). The damped leapfrog
   //   v(t+dt/2) = ((1 - c dt/2) v(t-dt/2) + dt (f/m + g)) / (1 + c dt/2)
   // is the undamped one with the drag taken at the mean of the two half-step velocities, so its work,
   // -c m v_mean . dx, keeps the energy identity exact; it is booked as `damping` (dissipated, >= 0).
   double mass_damping = 0.0;
-  // 3 per node, or empty: external forces gathered per node (the fluid's, systems/coupling); they join the
-  // loaded faces' (source 2) and their work is external work.
-  std::span<const double> external_node_force = {};
-  // 3 per node, or empty: the pressed crack faces' forces, gathered per node by the surface loads (only
-  // broken joints' faces carry them, so giving every joint face its slots would gather zeros); external.
-  std::span<const double> crack_node_force = {};
+  // Forces a producer has already gathered per node (3 per node), added after the slots, in array
+  // order: to the external forces (source 2), or, when `internal`, to the internal forces as a fourth
+  // source whose work is booked as work[3] (contact).
+  struct NodeRows {
+    std::span<const double> force;
+    bool internal = false;
+  };
+  static constexpr size_t kMaxNodeRows = 4;
+  NodeRows node_rows[kMaxNodeRows] = {};
+  size_t node_row_count = 0;
 };
 
 struct NodeStepResult {
   size_t non_finite = 0;  // nodes whose new position or velocity is not finite (0 in a healthy run)
-  // work of source 0, source 1, everything external, and node_force [J]
+  // work of source 0, source 1, everything external, and the internal node rows [J]
   double work[4] = {0.0, 0.0, 0.0, 0.0};
   double damping = 0.0;  // energy the mass damping took out [J]
   NodeStepResult& operator+=(const NodeStepResult& o) {

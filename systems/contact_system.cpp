@@ -9,6 +9,7 @@
 
 #include "engine/mesh/tet_faces.hpp"
 #include "engine/schedule/parallel.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -54,7 +55,7 @@ ContactSystem::ContactSystem(Store& store, const ContactSpec& spec, size_t input
     : store_(store), input_vertex_count_(input_vertex_count) {
   if (!spec.penalty) tet_penalty_ = std::move(tet_penalty);
   Table& nodes = store_.table(solid::node_table);
-  nodes.add<double>("contact_force", 3);
+  nodes.add<double>(node_force_column(NodeForceSource::contact), 3);
   nodes.add<double>("x_detect", 3);
   if (store_.has(solid::joint_table)) store_.table(solid::joint_table).add<uint8_t>("in_contact");
   Table& pairs = store_.add_table(solid::contact_pair_table);
@@ -277,7 +278,7 @@ Access ContactSystem::access() const {
     reads.push_back(col(solid::joint_table, "d_max"));
   }
   if (store_.has(solid::joint_state_table)) reads.push_back(col(solid::joint_state_table, "damage_onsets"));
-  std::vector<std::string> writes{col(N, "contact_force"),
+  std::vector<std::string> writes{col(N, node_force_column(NodeForceSource::contact)),
                                   col(N, "x_detect"),
                                   col(P, "tets"),
                                   col(P, "history"),
@@ -489,7 +490,8 @@ void ContactSystem::detect() {
 // Zeroes solid_node.contact_force at the corners of the pairs' tets: what a gather over them wrote.
 void ContactSystem::clear_gathered_nodes(std::span<const kernels::ContactPair> pairs) {
   const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
-  auto contact_force = store_.table(solid::node_table).span<double>("contact_force");
+  auto contact_force =
+      store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::contact));
   for (const auto& p : pairs)
     for (int32_t t : {p.a, p.b})
       for (int c = 0; c < 4; ++c)
@@ -523,7 +525,8 @@ void ContactSystem::compute_forces(const StepContext& ctx) {
   for (size_t b = 0; b < blocks; ++b) status_ += partial_status_[b];
   // Clear the nodes this list gathers into, then gather in pair order (deterministic).
   clear_gathered_nodes(pairs);
-  kernels::contact_gather(pairs, conn, args.pair_force, nodes.span<double>("contact_force"));
+  kernels::contact_gather(pairs, conn, args.pair_force,
+                          nodes.span<double>(node_force_column(NodeForceSource::contact)));
   double friction = 0.0, damping = 0.0;
   for (size_t k = 0; k < pairs.size(); ++k) {
     friction += args.friction_dissipation[k];

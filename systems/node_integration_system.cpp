@@ -3,6 +3,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "engine/schedule/parallel.hpp"
 #include "kernels/node_integration.hpp"
@@ -23,33 +24,30 @@ NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoun
       damped_(mass_damping_.highest() > 0.0) {
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
-  contact_ = store_.table(solid::node_table).has("contact_force");
-  crack_ = store_.table(solid::node_table).has("crack_force");
   blocks_.resize((nodes + grain - 1) / grain);
+}
+
+void NodeIntegrationSystem::gather(NodeForceSource source) {
+  const NodeForceRouteEntry& e = route_entry(source);
+  if (e.rows != NodeForceRows::node || !store_.table(e.table).has(e.column))
+    throw std::logic_error(std::string("node pass: ") + e.table + "." + e.column +
+                           " is not a node-row force column of the store");
+  gathered_[static_cast<size_t>(source)] = true;
 }
 
 Access NodeIntegrationSystem::access() const {
   using solid::col;
   const char* N = solid::node_table;
-  std::vector<std::string> reads{col(solid::tet_table, "corner_force"),
-                                 col(solid::face_table, "corner_force"),
-                                 col(N, "mass"),
-                                 col(N, "inv_mass"),
-                                 col(N, "free"),
-                                 col(N, "held"),
-                                 col(N, "slots"),
-                                 col(solid::slot_table, "slot")};
-  if (store_.has(solid::joint_table)) reads.push_back(col(solid::joint_table, "corner_force"));
+  std::vector<std::string> reads{col(N, "mass"), col(N, "inv_mass"), col(N, "free"),
+                                 col(N, "held"), col(N, "slots"),    col(solid::slot_table, "slot")};
   const char* E = solid::energy_table;
-  std::vector<std::string> writes{col(N, "x"),        col(N, "v"),
-                                  col(N, "f"),        col(E, "external_work"),
-                                  col(E, "tet_work"), col(E, "joint_work")};
-  if (contact_) {
-    reads.push_back(col(N, "contact_force"));
-    writes.push_back(col(E, "contact_work"));
+  std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "f")};
+  for (const NodeForceRouteEntry& e : kNodeForceRoute) {
+    if (!uses(e)) continue;
+    reads.push_back(col(e.table, e.column));
+    const std::string work = col(E, e.work);
+    if (std::find(writes.begin(), writes.end(), work) == writes.end()) writes.push_back(work);
   }
-  if (!external_column_.empty()) reads.push_back(col(N, external_column_.c_str()));
-  if (crack_) reads.push_back(col(N, "crack_force"));
   if (damped_) writes.push_back(col(E, "damping"));
   if (fused_) {
     const Access tets = fused_->fused_access();
@@ -68,7 +66,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
     for (int k = 0; k < 3; ++k) prescribed_[3 * i + k] = c.direction[k] * scale;
   }
   Table& nodes = store_.table(solid::node_table);
-  const kernels::NodeIntegrationArgs args{
+  kernels::NodeIntegrationArgs args{
       ctx.dt,
       {gravity_[0], gravity_[1], gravity_[2]},
       nodes.span<double>("x"),
@@ -79,20 +77,26 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
       nodes.span<uint8_t>("free"),
       nodes.span<int32_t>("held"),
       prescribed_,
-      contact_ ? nodes.span<double>("contact_force") : std::span<double>{},
-      mass_damping_(ctx.time),
-      external_column_.empty() ? std::span<const double>{} : nodes.span<double>(external_column_),
-      crack_ ? nodes.span<double>("crack_force") : std::span<double>{}};
-  const Table& tets = store_.table(solid::tet_table);
-  const Table* joints = store_.has(solid::joint_table) ? &store_.table(solid::joint_table) : nullptr;
-  const Table& faces = store_.table(solid::face_table);
-  const int64_t tet_slots = 4 * static_cast<int64_t>(tets.size());
-  const int64_t joint_slots = joints ? 6 * static_cast<int64_t>(joints->size()) : 0;
+      mass_damping_(ctx.time)};
+  for (const NodeForceRouteEntry& e : kNodeForceRoute)
+    if (e.rows == NodeForceRows::node && uses(e))
+      args.node_rows[args.node_row_count++] = {store_.table(e.table).span<const double>(e.column),
+                                               e.book != NodeForceBook::external};
+  // The slot sources' rows; slots per row: 4 per tet, 6 per joint (its row pairs), 3 per loaded face
+  // (kernels::ForceSlots). Crack faces have no slots: their forces come as node rows.
+  auto slot_rows = [&](NodeForceSource s) {
+    const NodeForceRouteEntry& e = route_entry(s);
+    return uses(e) ? store_.table(e.table).span<const double>(e.column) : std::span<const double>{};
+  };
+  const std::span<const double> rows[3] = {slot_rows(NodeForceSource::tets),
+                                           slot_rows(NodeForceSource::joints),
+                                           slot_rows(NodeForceSource::loaded_faces)};
+  const int64_t tet_slots = static_cast<int64_t>(rows[0].size() / 3);
+  const int64_t joint_slots = 2 * static_cast<int64_t>(rows[1].size() / 3);
+  const int64_t face_slots = static_cast<int64_t>(rows[2].size() / 3);
   const kernels::ForceSlots slots{
-      {tets.span<double>("corner_force"), joints ? joints->span<double>("corner_force") : std::span<double>{},
-       faces.span<double>("corner_force")},
-      {0, tet_slots, tet_slots + joint_slots,
-       tet_slots + joint_slots + 3 * static_cast<int64_t>(faces.size())},  // crack faces have no slots
+      {rows[0], rows[1], rows[2]},
+      {0, tet_slots, tet_slots + joint_slots, tet_slots + joint_slots + face_slots},
       nodes.span<int32_t>("slots"),
       store_.table(solid::slot_table).span<int32_t>("slot")};
   if (fused_)
@@ -105,10 +109,13 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   for (const auto& b : blocks_) total += b;  // fixed block order: deterministic
   non_finite_ = total.non_finite;
   Table& energy = store_.table(solid::energy_table);
-  energy.span<double>("tet_work")[0] += total.work[0];
-  energy.span<double>("joint_work")[0] += total.work[1];
-  energy.span<double>("external_work")[0] += total.work[2];
-  if (contact_) energy.span<double>("contact_work")[0] += total.work[3];
+  bool booked[kNodeForceBooks] = {};
+  for (const NodeForceRouteEntry& e : kNodeForceRoute) {
+    const size_t b = static_cast<size_t>(e.book);
+    if (!uses(e) || booked[b]) continue;
+    booked[b] = true;
+    energy.span<double>(e.work)[0] += total.work[b];
+  }
   if (damped_) energy.span<double>("damping")[0] += total.damping;
 }
 

@@ -1,9 +1,8 @@
 #pragma once
-// The node pass: gathers every producer's corner forces, then advances velocities and positions
-// by central difference, holding constrained components at their prescribed velocity, and books the
-// work of internal and external forces over the step in the solid_energy table. With contact, the
-// per-node contact forces (solid_node.contact_force) join the internal forces, the pressed crack faces'
-// (solid_node.crack_force) the external ones.
+// The node pass: gathers every force on the solid's nodes by the one route of systems/node_force_route.hpp,
+// in its order, then advances velocities and positions by central difference, holding constrained
+// components at their prescribed velocity, and books each source's work over the step in the
+// solid_energy column the route names.
 #include <vector>
 
 #include "engine/core/aligned_buffer.hpp"
@@ -11,6 +10,7 @@
 #include "engine/scene/scene.hpp"
 #include "engine/schedule/system.hpp"
 #include "kernels/node_integration.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/tet_force_system.hpp"
 
 namespace rift {
@@ -26,11 +26,9 @@ class NodeIntegrationSystem : public System {
   void run(const StepContext& ctx) override;
 
   size_t non_finite_nodes() const { return non_finite_; }
-  // Also gather the per-node external forces of solid_node.<column> (3 per node; the fluid's), booked as
-  // external work. Before the step graph is built.
-  void add_external_node_force(std::string column) { external_column_ = std::move(column); }
-  // Gathers solid_node.crack_force (added after this system was made) as an external force.
-  void read_crack_forces() { crack_ = true; }
+  // Gathers a source whose rows are per node (NodeForceRows::node) from now on; its column must exist.
+  // The slot sources are always gathered. Before the step graph is built.
+  void gather(NodeForceSource source);
   // Computes the forces of the tets whose nodes are their own inside this pass, in runs of up to
   // kFusedTets tets, each right before its nodes are integrated (TetForceSystem says why). Tets that
   // share nodes stay with the tet system. The same physics as without, rounded differently: a node's
@@ -48,9 +46,11 @@ class NodeIntegrationSystem : public System {
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<kernels::NodeStepResult> blocks_;
   size_t non_finite_ = 0;
-  std::string external_column_;  // empty: none
-  bool contact_ = false;         // solid_node.contact_force exists (a contact system gathers into it)
-  bool crack_ = false;  // solid_node.crack_force exists (the surface loads gather crack faces into it)
+  bool gathered_[std::size(kNodeForceRoute)] = {};  // per route entry: its node rows are gathered
+  // Slot sources are gathered when their table exists, node rows when asked to (gather()).
+  bool uses(const NodeForceRouteEntry& e) const {
+    return e.rows == NodeForceRows::slots ? store_.has(e.table) : gathered_[static_cast<size_t>(e.source)];
+  }
 
   // With fused tets (fuse_tet_forces): the nodes cut into pieces, each either plain nodes or the nodes of a
   // run of tets [tet_begin, tet_end); pieces grouped into blocks of about `grain` nodes, in node order.

@@ -45,6 +45,8 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   }
   integration_ = std::make_unique<NodeIntegrationSystem>(store_, velocity_conditions_, spec_.gravity,
                                                          spec_.mass_damping);
+  if (spec_.fracture && spec_.fracture->crack_pressure) integration_->gather(NodeForceSource::crack);
+  if (contact_) integration_->gather(NodeForceSource::contact);
   if (spec_.fused_tet_pass) fused_tets_ = integration_->fuse_tet_forces(*tet_forces_);
   stable_dt_ = tet_stable_dt_;
   joint_stable_dt_ = INFINITY;
@@ -100,13 +102,13 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
 }
 
 void SolidModel::accept_fluid_forces() {
-  store_.table(solid::node_table).add<double>("fluid_force", 3);
-  integration_->add_external_node_force("fluid_force");
+  store_.table(solid::node_table).add<double>(route_entry(NodeForceSource::fluid).column, 3);
+  integration_->gather(NodeForceSource::fluid);
 }
 
 void SolidModel::accept_crack_fluid_forces() {
-  store_.table(solid::node_table).add<double>("crack_force", 3);
-  integration_->read_crack_forces();
+  store_.table(solid::node_table).add<double>(route_entry(NodeForceSource::crack).column, 3);
+  integration_->gather(NodeForceSource::crack);
 }
 
 void SolidModel::add_node_mass(std::span<const double> extra) {

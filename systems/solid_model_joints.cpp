@@ -10,6 +10,7 @@
 
 #include "engine/core/error.hpp"
 #include "kernels/joint_initial_state.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -284,7 +285,7 @@ namespace rift {
 // force slots: the surface loads gather the pressed faces' corner forces into solid_node.crack_force,
 // which the node pass reads as an external force.
 void SolidModel::add_crack_faces() {
-  store_.table(solid::node_table).add<double>("crack_force", 3);
+  store_.table(solid::node_table).add<double>(node_force_column(NodeForceSource::crack), 3);
   const Table& joints = store_.table(solid::joint_table);
   const auto jn = joints.span<const int32_t>("nodes");
   const auto jt = joints.span<const int32_t>("tets");

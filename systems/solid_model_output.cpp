@@ -8,6 +8,7 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/scene/output_fields.hpp"
 #include "engine/scene/suggest.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -85,7 +86,8 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
   node_field("displacement", displacement_.data());
   node_field("velocity", nodes.span<double>("v").data());
   node_field("force", nodes.span<double>("f").data());
-  if (contact_) node_field("contact_force", nodes.span<double>("contact_force").data());
+  if (contact_)
+    node_field("contact_force", nodes.span<double>(node_force_column(NodeForceSource::contact)).data());
   cell_field(g, "stress", 6, ElementType::f64, stress_tensor6_.data());
   cell_field(g, "principal_stress", 3, ElementType::f64, principal_.data());
   cell_field(g, "energy", 1, ElementType::f64, tets.span<double>("energy").data());

@@ -1,6 +1,7 @@
 #include "systems/surface_load_system.hpp"
 
 #include "engine/schedule/parallel.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -29,7 +30,7 @@ Access SurfaceLoadSystem::access() const {
   if (has_crack_faces_) reads.push_back(col(solid::event_table, "joint"));
   if (store_.table(F).has("fluid_pressure")) reads.push_back(col(F, "fluid_pressure"));
   std::vector<std::string> writes{col(F, "corner_force")};
-  if (has_crack_faces_) writes.push_back(col(solid::node_table, "crack_force"));
+  if (has_crack_faces_) writes.push_back(col(solid::node_table, node_force_column(NodeForceSource::crack)));
   return {reads, writes};
 }
 
@@ -71,7 +72,7 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
   // Gathered per node in the log's order, serially: a node may sit on three pressed faces, and the order of
   // the sum must not depend on the threads. The pressed set only grows, so clearing its nodes first leaves
   // every other node at zero. Cost: 18 values per broken joint.
-  auto node_force = store_.table(solid::node_table).span<double>("crack_force");
+  auto node_force = store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::crack));
   auto each_pressed_corner = [&](auto visit) {  // visit(force row of the node, corner force)
     for (const int32_t j : broken)
       for (size_t f = crack_face_begin_ + 2 * static_cast<size_t>(j), e = f + 2; f < e; ++f)

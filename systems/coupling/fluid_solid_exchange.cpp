@@ -14,6 +14,7 @@
 #include "systems/coupling/fluid_solid_tables.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -370,9 +371,9 @@ Access FluidToSolidSystem::access() const {
   Access a{{fluid::col(fluid::node_table, "velocity"), fluid::col(F, "solid_velocity"),
             fluid::col(F, "velocity_before"), fluid::col(F, "absorption"), fluid::col(F, "nodes"),
             col(solid::tet_table, "nodes")},
-           {col(solid::node_table, "fluid_force"), col(S, "exchanges"), col(S, "penalty_scale"),
-            col(S, "force"), col(S, "penalty"), col(S, "absorption"), col(S, "previous_force"),
-            col(S, "previous_change"), col(S, "growing")}};
+           {col(solid::node_table, node_force_column(NodeForceSource::fluid)), col(S, "exchanges"),
+            col(S, "penalty_scale"), col(S, "force"), col(S, "penalty"), col(S, "absorption"),
+            col(S, "previous_force"), col(S, "previous_change"), col(S, "growing")}};
   if (settings_.oscillation_lag == 2) a.writes.push_back(col(S, "older_change"));
   if (!pairs_.wet_faces.empty() || !settings_.volume_force) {  // sampled, or their total push reported
     a.reads.push_back(col(solid::node_table, "x"));
@@ -420,7 +421,7 @@ void FluidToSolidSystem::exchange(bool initial) {
   args.penalty = {pairs_.penalty.data(), 3 * np};
   args.force = {pairs_.force.data(), 3 * np};
   parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::fluid_to_solid_pairs(args, b, e); });
-  auto node_force = store_.table(solid::node_table).span<double>("fluid_force");
+  auto node_force = store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::fluid));
   if (settings_.volume_force)
     kernels::gather_to_solid_nodes(list, args.force, 3, store_.table(solid::tet_table).span<int32_t>("nodes"),
                                    node_force);
@@ -479,7 +480,7 @@ void FluidToSolidSystem::add_virtual_mass_force() {
   const auto extra = nodes.span<double>("fluid_added_mass");
   const auto v = nodes.span<double>("v");
   auto v_window = nodes.span<double>("window_velocity");
-  auto force = nodes.span<double>("fluid_force");
+  auto force = nodes.span<double>(node_force_column(NodeForceSource::fluid));
   for (size_t i = 0; i < v.size(); ++i) {
     force[i] += extra[i / 3] * ((v[i] - v_window[i]) / settings_.dt - settings_.solid_gravity[i % 3]);
     v_window[i] = v[i];

@@ -10,6 +10,7 @@
 #include "systems/coupling/fluid_solid_tables.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -243,7 +244,8 @@ void FluidSolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vect
     if (g.name == "solid" && wants_field(fields, "fluid_force")) {
       const Table& nodes = store_.table(solid::node_table);
       g.fields.push_back({"fluid_force", Center::node, 3, ElementType::f64,
-                          nodes.span<double>("fluid_force").data(), nodes.size()});
+                          nodes.span<double>(node_force_column(NodeForceSource::fluid)).data(),
+                          nodes.size()});
     }
   }
 }

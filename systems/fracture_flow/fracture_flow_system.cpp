@@ -9,6 +9,7 @@
 #include "engine/schedule/parallel.hpp"
 #include "kernels/crack_pressure_closure.hpp"
 #include "systems/fracture_flow/fracture_flow_tables.hpp"
+#include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -129,7 +130,7 @@ Access FractureFlowSystem::access() const {
   if (well_is_wall()) reads.push_back(col(N, "x0"));
   if (spec_.pressure_from_fluid) reads.push_back(col(books_table, "inlet_pressure"));
   reads.push_back(col(books_table, "initial_mass"));
-  std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "crack_force"),
+  std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, node_force_column(NodeForceSource::crack)),
                                   col(solid::energy_table, "external_work")};
   for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})
     writes.push_back(col(vertex_table, c));
@@ -295,7 +296,7 @@ void FractureFlowSystem::fill_initial_cracks() {
   }
   store_.table(books_table).span<double>("initial_mass")[0] = total;
   // The faces carry the initial pressure from the first step on.
-  auto force = store_.table(solid::node_table).span<double>("crack_force");
+  auto force = store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::crack));
   for (size_t i = 0; i < node_.size(); ++i) {
     felt_[i] = p0;
     for (int d = 0; d < 3; ++d)
@@ -442,7 +443,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   for (size_t i = 0; i < node_.size(); ++i) now_[i] = wall_pressure[size_t(node_vertex_[i])];
   Table& solid_nodes = store_.table(solid::node_table);
   const auto x = solid_nodes.span<double>("x"), v = solid_nodes.span<double>("v");
-  auto force = solid_nodes.span<double>("crack_force");
+  auto force = solid_nodes.span<double>(node_force_column(NodeForceSource::crack));
   const double correction_work =
       parallel_sum(node_.size(), kEntryGrain, work_blocks_, [&](size_t b, size_t e) {
         const double work =

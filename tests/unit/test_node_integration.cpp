@@ -134,6 +134,48 @@ TEST(NodeIntegration, SameBitsForAnySplit) {
   EXPECT_EQ(r.non_finite, sum.non_finite);
 }
 
+// Node rows (forces a producer gathered per node) join after the slots, in array order: external rows
+// add to the loaded faces' sum in that order, internal rows (contact) make a fourth internal source whose
+// work is work[3]. The same step with the node rows' sums folded into extra slots of the same sources
+// would round differently, so the reference is the documented order itself, compared bit for bit.
+TEST(NodeIntegration, NodeRowsJoinInArrayOrder) {
+  Problem with_rows(500), reference(500);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> fluid(3 * with_rows.nodes), crack(3 * with_rows.nodes), contact(3 * with_rows.nodes);
+  for (auto* rows : {&fluid, &crack, &contact})
+    for (double& value : *rows) value = unit(rng);
+  NodeIntegrationArgs a = with_rows.args();
+  a.node_rows[a.node_row_count++] = {fluid, false};
+  a.node_rows[a.node_row_count++] = {crack, false};
+  a.node_rows[a.node_row_count++] = {contact, true};
+  const NodeStepResult r = integrate_nodes(a, with_rows.force_slots(), 0, with_rows.nodes);
+
+  const NodeIntegrationArgs b = reference.args();
+  const std::vector<double> v0 = reference.v;
+  double work3 = 0.0;
+  for (size_t n = 0; n < reference.nodes; ++n)
+    for (int c = 0; c < 3; ++c) {
+      double by_source[3] = {0.0, 0.0, 0.0};
+      for (int32_t k = reference.node_range[2 * n]; k < reference.node_range[2 * n + 1]; ++k) {
+        const int32_t slot = reference.slots[k];
+        by_source[(slot >= reference.first_slot[1]) + (slot >= reference.first_slot[2])] +=
+            reference.slot_force(slot, c);
+      }
+      const size_t i = 3 * n + c;
+      const double external = (by_source[2] + fluid[i]) + crack[i];
+      const double total = (by_source[0] + by_source[1] + contact[i]) + external;
+      const double held = reference.held[i] >= 0 ? b.prescribed[c] : 0.0;
+      const double vn =
+          reference.free_mask[i] ? v0[i] + b.dt * (total * reference.inv_mass[n] + b.gravity[c]) : held;
+      EXPECT_EQ(with_rows.f[i], total) << n << " " << c;
+      EXPECT_EQ(with_rows.v[i], vn) << n << " " << c;
+      work3 += contact[i] * 0.5 * b.dt * (v0[i] + vn);
+    }
+  EXPECT_NEAR(r.work[3], work3, 1e-12 * std::abs(work3));
+  EXPECT_NE(r.work[3], 0.0);
+}
+
 TEST(NodeIntegration, CountsNonFiniteNodes) {
   Problem p(100);
   p.joint_force[3 * 5 + 1] = std::nan("");

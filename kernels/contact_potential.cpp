@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/node_rows.hpp"
 #include "kernels/vec3_ops.hpp"
 
 namespace rift::kernels {
@@ -401,14 +402,14 @@ void remap_pair_history(std::span<const ContactPair> old_pairs, std::span<const 
 
 void contact_gather(std::span<const ContactPair> pairs, std::span<const int32_t> tet_nodes,
                     std::span<const double> pair_force, std::span<double> node_force) {
-  for (size_t q = 0; q < pairs.size(); ++q) {
-    const int32_t tets[2] = {pairs[q].a, pairs[q].b};
-    for (int s = 0; s < 2; ++s)
-      for (int c = 0; c < 4; ++c) {
-        const size_t node = static_cast<size_t>(tet_nodes[4 * static_cast<size_t>(tets[s]) + c]);
-        for (int d = 0; d < 3; ++d) node_force[3 * node + d] += pair_force[24 * q + 3 * (4 * s + c) + d];
-      }
-  }
+  // Corner k is corner k % 4 of side (k / 4) % 2 of pair k / 8; its force is row k of pair_force.
+  add_corners_to_nodes<3>(
+      8 * pairs.size(),
+      [&](size_t k) {
+        const ContactPair& q = pairs[k / 8];
+        return tet_nodes[4 * static_cast<size_t>((k / 4) % 2 == 0 ? q.a : q.b) + k % 4];
+      },
+      [&](size_t k) { return &pair_force[3 * k]; }, 1.0, node_force);
 }
 
 }  // namespace rift::kernels

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "kernels/node_rows.hpp"
 #include "kernels/tet_intersection.hpp"
 #include "kernels/tet_point_location.hpp"
 
@@ -97,15 +98,17 @@ void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end) {
 void gather_to_solid_nodes(std::span<const CouplingPair> pairs, std::span<const double> pair_value,
                            int components, std::span<const int32_t> solid_tet_nodes,
                            std::span<double> node_value) {
-  const size_t m = static_cast<size_t>(components);
   std::fill(node_value.begin(), node_value.end(), 0.0);
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    const size_t s = static_cast<size_t>(pairs[p].solid);
-    for (int c = 0; c < 4; ++c) {
-      const size_t n = static_cast<size_t>(solid_tet_nodes[4 * s + c]);
-      for (size_t d = 0; d < m; ++d) node_value[m * n + d] += 0.25 * pair_value[m * p + d];
-    }
-  }
+  // Corner k is corner k % 4 of the solid tet of pair k / 4; each takes a quarter of the pair's value.
+  const auto node_of = [&](size_t k) {
+    return solid_tet_nodes[4 * static_cast<size_t>(pairs[k / 4].solid) + k % 4];
+  };
+  const size_t m = static_cast<size_t>(components);
+  const auto value_of = [&](size_t k) { return &pair_value[m * (k / 4)]; };
+  if (components == 3)
+    add_corners_to_nodes<3>(4 * pairs.size(), node_of, value_of, 0.25, node_value);
+  else
+    add_corners_to_nodes<1>(4 * pairs.size(), node_of, value_of, 0.25, node_value);
 }
 
 size_t interpolate_p1_at_points(std::span<const double> fluid_x, std::span<const int32_t> fluid_tet_nodes,

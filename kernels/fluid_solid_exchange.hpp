@@ -99,7 +99,7 @@ void fluid_to_solid_pairs(const FluidToSolidArgs& a, size_t begin, size_t end);
 
 // node_value (`components` per solid node) = sum over pairs, in pair order, of a quarter of the pair's
 // value on each corner of S (lumped: the consistent load of a uniform density on a linear tet): the force
-// F_KS (3), or the virtual added mass (1). Overwrites node_value.
+// F_KS (3), or the virtual added mass (1); components is 3 or 1. Overwrites node_value.
 void gather_to_solid_nodes(std::span<const CouplingPair> pairs, std::span<const double> pair_value,
                            int components, std::span<const int32_t> solid_tet_nodes,
                            std::span<double> node_value);

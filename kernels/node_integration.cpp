@@ -41,10 +41,13 @@ template <bool Damped, bool WriteForce>
 [[gnu::always_inline]] inline void advance_node(const NodeIntegrationArgs& a, const Leapfrog& lf, size_t n,
                                                 double f[3][3], NodeStepResult& r) {
   double fc[3] = {0.0, 0.0, 0.0};
+  // Two loops, not one through a pointer to fc or f[2], so that both stay in registers.
   for (size_t k = 0; k < a.node_row_count; ++k) {
     const double* row = a.node_rows[k].force.data() + 3 * n;
-    double* to = a.node_rows[k].internal ? fc : f[2];
-    for (int c = 0; c < 3; ++c) to[c] += row[c];
+    if (a.node_rows[k].internal)
+      for (int c = 0; c < 3; ++c) fc[c] += row[c];
+    else
+      for (int c = 0; c < 3; ++c) f[2][c] += row[c];
   }
   const double w = a.inv_mass[n], m = a.mass[n];
   bool finite = true;

@@ -10,9 +10,9 @@
 //   slots      one row per element corner, at a place fixed at set-up; each node lists its slots
 //              (solid_force_slot), grouped by source in the table's order;
 //   node rows  one row per node (3 values), which the producer fills by gathering its own corner rows in
-//              a fixed order: for producers whose corners change between steps (contact pairs, the
-//              fluid's coupling pairs) or which act on few of the nodes they could (the faces of broken
-//              joints), where a slot per possible corner would gather mostly zeros.
+//              a fixed order (kernels/node_rows.hpp): for producers whose corners change between steps
+//              (contact pairs, the fluid's coupling pairs) or which act on few of the nodes they could
+//              (the faces of broken joints), where a slot per possible corner would gather mostly zeros.
 #include <cstdint>
 #include <iterator>
 #include <string_view>

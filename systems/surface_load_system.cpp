@@ -1,6 +1,7 @@
 #include "systems/surface_load_system.hpp"
 
 #include "engine/schedule/parallel.hpp"
+#include "kernels/node_rows.hpp"
 #include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -73,16 +74,16 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
   // the sum must not depend on the threads. The pressed set only grows, so clearing its nodes first leaves
   // every other node at zero. Cost: 18 values per broken joint.
   auto node_force = store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::crack));
-  auto each_pressed_corner = [&](auto visit) {  // visit(force row of the node, corner force)
-    for (const int32_t j : broken)
-      for (size_t f = crack_face_begin_ + 2 * static_cast<size_t>(j), e = f + 2; f < e; ++f)
-        for (int k = 0; k < 3; ++k)
-          visit(&node_force[3 * static_cast<size_t>(nodes[3 * f + k])], &force[9 * f + 3 * k]);
+  // Corner k is corner k % 3 of face k / 3 of the pressed faces, two per broken joint.
+  const auto face_of = [&](size_t k) {
+    return crack_face_begin_ + 2 * static_cast<size_t>(broken[k / 6]) + (k / 3) % 2;
   };
-  each_pressed_corner([](double* to, const double*) { to[0] = to[1] = to[2] = 0.0; });
-  each_pressed_corner([](double* to, const double* from) {
-    for (int c = 0; c < 3; ++c) to[c] += from[c];
-  });
+  const auto node_of = [&](size_t k) { return nodes[3 * face_of(k) + k % 3]; };
+  for (size_t k = 0; k < 6 * broken.size(); ++k)
+    for (int c = 0; c < 3; ++c) node_force[3 * static_cast<size_t>(node_of(k)) + c] = 0.0;
+  kernels::add_corners_to_nodes<3>(
+      6 * broken.size(), node_of, [&](size_t k) { return &force[9 * face_of(k) + 3 * (k % 3)]; }, 1.0,
+      node_force);
 }
 
 }  // namespace rift

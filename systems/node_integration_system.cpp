@@ -37,11 +37,11 @@ void NodeIntegrationSystem::gather(NodeForceSource source) {
 
 Access NodeIntegrationSystem::access() const {
   using solid::col;
-  const char* N = solid::node_table;
-  std::vector<std::string> reads{col(N, "mass"), col(N, "inv_mass"), col(N, "free"),
-                                 col(N, "held"), col(N, "slots"),    col(solid::slot_table, "slot")};
+  namespace node = solid::node;
+  std::vector<std::string> reads{node::mass.key(), node::inv_mass.key(), node::free.key(),
+                                 node::held.key(), node::slots.key(),    solid::slot.key()};
   const char* E = solid::energy_table;
-  std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, "f")};
+  std::vector<std::string> writes{node::x.key(), node::v.key(), node::f.key()};
   for (const NodeForceRouteEntry& e : kNodeForceRoute) {
     if (!uses(e)) continue;
     reads.push_back(col(e.table, e.column));
@@ -66,16 +66,17 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
     for (int k = 0; k < 3; ++k) prescribed_[3 * i + k] = c.direction[k] * scale;
   }
   Table& nodes = store_.table(solid::node_table);
+  namespace node = solid::node;
   kernels::NodeIntegrationArgs args{
       ctx.dt,
       {gravity_[0], gravity_[1], gravity_[2]},
-      nodes.span<double>("x"),
-      nodes.span<double>("v"),
-      ctx.observed ? nodes.span<double>("f") : std::span<double>{},  // read by outputs and reactions only
-      nodes.span<double>("mass"),
-      nodes.span<double>("inv_mass"),
-      nodes.span<uint8_t>("free"),
-      nodes.span<int32_t>("held"),
+      node::x.in(nodes),
+      node::v.in(nodes),
+      ctx.observed ? node::f.in(nodes) : std::span<double>{},  // read by outputs and reactions only
+      node::mass.in(nodes),
+      node::inv_mass.in(nodes),
+      node::free.in(nodes),
+      node::held.in(nodes),
       prescribed_,
       mass_damping_(ctx.time)};
   for (const NodeForceRouteEntry& e : kNodeForceRoute)
@@ -97,8 +98,8 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   const kernels::ForceSlots slots{
       {rows[0], rows[1], rows[2]},
       {0, tet_slots, tet_slots + joint_slots, tet_slots + joint_slots + face_slots},
-      nodes.span<int32_t>("slots"),
-      store_.table(solid::slot_table).span<int32_t>("slot")};
+      node::slots.in(nodes),
+      solid::slot.in(store_)};
   if (fused_)
     run_fused(args, slots, ctx);
   else
@@ -156,8 +157,8 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
 size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
   const Table& nodes = store_.table(solid::node_table);
   const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
-  const auto range = nodes.span<const int32_t>("slots");
-  const auto slot = store_.table(solid::slot_table).span<const int32_t>("slot");
+  const std::span<const int32_t> range = solid::node::slots.in(nodes);
+  const std::span<const int32_t> slot = solid::slot.in(store_);
   const size_t tet_count = conn.size() / 4;
   const int64_t tet_slots = 4 * static_cast<int64_t>(tet_count);
   // A tet qualifies when its corners are 4 nodes in a row, each of which has its own corner as its only
@@ -271,8 +272,8 @@ bool NodeIntegrationSystem::build_face_table(const std::vector<Piece>& runs) {
       static_cast<int64_t>(conn.size()) +
       (store_.has(solid::joint_table) ? 6 * static_cast<int64_t>(store_.table(solid::joint_table).size())
                                       : 0);
-  const auto range = nodes.span<const int32_t>("slots");
-  const auto slot = store_.table(solid::slot_table).span<const int32_t>("slot");
+  const std::span<const int32_t> range = solid::node::slots.in(nodes);
+  const std::span<const int32_t> slot = solid::slot.in(store_);
   for (size_t n = 0; n < nodes.size(); ++n)
     if (node_tet[n] >= 0 && range[2 * n + 1] > range[2 * n] &&
         slot[static_cast<size_t>(range[2 * n + 1] - 1)] >= loads_first)

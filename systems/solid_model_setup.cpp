@@ -73,24 +73,22 @@ std::vector<uint8_t> SolidModel::fracture_zone(const TetMesh& mesh) const {
 
 void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh& mesh) {
   Table& nodes = store_.add_table(solid::node_table);
-  nodes.add<double>("x0", 3);
-  nodes.add<double>("x", 3);
-  nodes.add<double>("v", 3);
-  nodes.add<double>("f", 3);
-  nodes.add<double>("mass");
-  nodes.add<double>("inv_mass");
-  nodes.add<uint8_t>("free", 3);
-  nodes.add<int32_t>("held", 3);
-  nodes.add<int32_t>("slots", 2).indexes(IndexTarget::rows_of(solid::slot_table).or_end());
-  nodes.add<int32_t>("vertex").indexes(IndexTarget::list_of(mesh.nodes.size()));
+  namespace node = solid::node;
+  for (const auto& c : {node::x0, node::x, node::v, node::f}) c.create(nodes);
+  node::mass.create(nodes);
+  node::inv_mass.create(nodes);
+  node::free.create(nodes);
+  node::held.create(nodes);
+  node::slots.create(nodes).indexes(IndexTarget::rows_of(solid::slot_table).or_end());
+  node::vertex.create(nodes).indexes(IndexTarget::list_of(mesh.nodes.size()));
   nodes.resize(dm.nodes.size());
-  std::copy(dm.node_vertex.begin(), dm.node_vertex.end(), nodes.span<int32_t>("vertex").begin());
-  auto x0 = nodes.span<double>("x0");
+  std::copy(dm.node_vertex.begin(), dm.node_vertex.end(), node::vertex.in(nodes).begin());
+  auto x0 = node::x0.in(nodes);
   for (size_t n = 0; n < dm.nodes.size(); ++n)
     for (int c = 0; c < 3; ++c) x0[3 * n + c] = dm.nodes[n][c];
-  std::copy(x0.begin(), x0.end(), nodes.span<double>("x").begin());
-  std::fill(nodes.span<uint8_t>("free").begin(), nodes.span<uint8_t>("free").end(), uint8_t{1});
-  std::fill(nodes.span<int32_t>("held").begin(), nodes.span<int32_t>("held").end(), -1);
+  std::copy(x0.begin(), x0.end(), node::x.in(nodes).begin());
+  std::fill(node::free.in(nodes).begin(), node::free.in(nodes).end(), uint8_t{1});
+  std::fill(node::held.in(nodes).begin(), node::held.in(nodes).end(), -1);
 
   Table& tets = store_.add_table(solid::tet_table);
   tets.add<int32_t>("nodes", 4).indexes(IndexTarget::rows_of(solid::node_table));
@@ -276,10 +274,10 @@ void SolidModel::build_force_slots() {
     for (int32_t n : list) ++count[n + 1];
   for (size_t n = 0; n < nodes.size(); ++n) count[n + 1] += count[n];
   Table& slots = store_.add_table(solid::slot_table);
-  slots.add<int32_t>("slot");
+  solid::slot.create(slots);
   slots.resize(count.back());
-  auto slot = slots.span<int32_t>("slot");
-  auto range = nodes.span<int32_t>("slots");
+  auto slot = solid::slot.in(slots);
+  auto range = solid::node::slots.in(nodes);
   std::vector<int32_t> next(count.begin(), count.end() - 1);
   int32_t first = 0;
   const std::span<const int32_t> sources[3] = {tets, joints, faces};

@@ -1,7 +1,10 @@
 #pragma once
 // Names of the solid's tables and columns, in one place, so systems declare access with the same
 // strings the store uses.
+#include <cstdint>
 #include <string>
+
+#include "engine/core/column_ref.hpp"
 
 namespace rift::solid {
 
@@ -17,9 +20,23 @@ inline constexpr const char* energy_table = "solid_energy";
 inline constexpr const char* contact_pair_table = "solid_contact_pair";
 inline constexpr const char* contact_state_table = "solid_contact_state";
 
-// solid_node: x0 (3, reference position), x (3), v (3, at t - dt/2), f (3, total force of the last step),
-// mass (1), inv_mass (1), free (u8 x3), held (i32 x3, velocity condition per component or -1), slots (i32 x2:
-// [begin, end) in solid_force_slot), vertex (i32: the input mesh vertex the node copies)
+// solid_node's columns that every solid scene has (the force columns of systems/node_force_route.hpp
+// join them with their producers).
+namespace node {
+inline constexpr ColumnRef<double, 3> x0{node_table, "x0"};  // reference position
+inline constexpr ColumnRef<double, 3> x{node_table, "x"};
+inline constexpr ColumnRef<double, 3> v{node_table, "v"};  // at t - dt/2
+inline constexpr ColumnRef<double, 3> f{node_table, "f"};  // total force of the last observed step
+inline constexpr ColumnRef<double> mass{node_table, "mass"};
+inline constexpr ColumnRef<double> inv_mass{node_table, "inv_mass"};  // 0 for a massless node
+inline constexpr ColumnRef<uint8_t, 3> free{node_table, "free"};      // 1: integrated, 0: held
+// the velocity condition holding each component, or -1 (velocity 0)
+inline constexpr ColumnRef<int32_t, 3> held{node_table, "held"};
+inline constexpr ColumnRef<int32_t, 2> slots{node_table, "slots"};  // [begin, end) in solid_force_slot
+inline constexpr ColumnRef<int32_t> vertex{node_table, "vertex"};   // the input mesh vertex the node copies
+}  // namespace node
+inline constexpr ColumnRef<int32_t> slot{slot_table, "slot"};
+
 // solid_tet: nodes (i32 x4), dm_inv (9), volume0 (1), material (i32), region (i32),
 //            corner_force (12), stress (6), energy (1), viscous_power (1)
 // solid_joint (only with a fracture zone): nodes (i32 x6), tets (i32 x2), material (i32, joint material),

@@ -1,0 +1,61 @@
+#pragma once
+// A column declared once: its table, its name, its element type and its width (values per row). A
+// table's schema lists its columns as ColumnRefs (systems/solid_tables.hpp); set-up creates each column
+// from its ref, and systems look it up and declare access through the same ref. A name is then spelled in
+// one place, a lookup with the wrong element type does not compile, and one with the wrong width or in the
+// wrong table throws at the lookup instead of reading the wrong values.
+//
+//   inline constexpr ColumnRef<double, 3> x{"solid_node", "x"};
+//   x.create(store);                         // set-up
+//   std::span<double> positions = x.in(store);
+//   Access{{x.key()}, {}};                   // "solid_node.x"
+#include <span>
+#include <string>
+
+#include "engine/core/error.hpp"
+#include "engine/core/table.hpp"
+
+namespace rift {
+
+template <class T, int Width = 1>
+struct ColumnRef {
+  using value_type = T;
+  static constexpr int width = Width;
+
+  const char* table;
+  const char* name;
+
+  // "table.name", as systems declare access.
+  std::string key() const { return std::string(table) + "." + name; }
+
+  // Adds the column to its table (sized to the table's rows); a column has one creator, so adding it twice
+  // throws (Table::add_column).
+  Column& create(Table& t) const {
+    check_table(t);
+    return t.add<T>(name, Width);
+  }
+  Column& create(Store& s) const { return create(s.table(table)); }
+
+  bool exists(const Store& s) const { return s.has(table) && s.table(table).has(name); }
+
+  std::span<T> in(Table& t) const { return checked(t).template values<T>(); }
+  std::span<const T> in(const Table& t) const { return checked(t).template values<T>(); }
+  std::span<T> in(Store& s) const { return in(s.table(table)); }
+  std::span<const T> in(const Store& s) const { return in(s.table(table)); }
+
+ private:
+  void check_table(const Table& t) const {
+    if (t.name() != table) throw Error("column " + key() + " looked up in table " + t.name());
+  }
+  template <class TableT>
+  auto& checked(TableT& t) const {
+    check_table(t);
+    auto& column = t.column(name);
+    if (column.components() != Width)
+      throw Error("column " + key() + " holds " + std::to_string(column.components()) +
+                  " values per row, looked up as " + std::to_string(Width));
+    return column;
+  }
+};
+
+}  // namespace rift

@@ -89,6 +89,10 @@ constexpr bool route_is_consistent() {
     // the kernel books as work[0], [1], [2]; node rows come after them.
     if ((i < 3) != (e.rows == NodeForceRows::slots)) return false;
     if (i < 3 && static_cast<size_t>(e.book) != i) return false;
+    // The kernel adds a node row to the external sum or to its fourth, internal one (work[3]).
+    if (e.rows == NodeForceRows::node && e.book != NodeForceBook::external &&
+        e.book != NodeForceBook::contact)
+      return false;
   }
   return true;
 }

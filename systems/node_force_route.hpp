@@ -3,7 +3,7 @@
 //
 // Every producer of a force on the solid writes it into rows it owns; the node pass
 // (systems/node_integration_system.cpp) gathers those rows per node, source by source in the order of
-// kNodeForceRoute, and books each source's work in the energy column the table names. The order is
+// kNodeForceRoute, and books each source's work in the energy column of its book (kBookWork). The order is
 // fixed, so a node's total is the same bits on any number of threads.
 //
 // Rows reach a node in one of two ways:
@@ -15,7 +15,6 @@
 //              (the faces of broken joints), where a slot per possible corner would gather mostly zeros.
 #include <cstdint>
 #include <iterator>
-#include <string_view>
 
 #include "systems/solid_tables.hpp"
 
@@ -43,23 +42,23 @@ struct NodeForceRouteEntry {
   const char* column;
   NodeForceRows rows;
   NodeForceBook book;
-  const char* work;  // the solid_energy column of its book
 };
+
+// The solid_energy column of each book's work, by NodeForceBook.
+inline constexpr const char* kBookWork[] = {"tet_work", "joint_work", "external_work", "contact_work"};
+inline constexpr size_t kNodeForceBooks = std::size(kBookWork);
+static_assert(static_cast<size_t>(NodeForceBook::contact) + 1 == kNodeForceBooks);
 
 // The route, in gather order.
 inline constexpr NodeForceRouteEntry kNodeForceRoute[] = {
-    {NodeForceSource::tets, solid::tet_table, "corner_force", NodeForceRows::slots, NodeForceBook::tet,
-     "tet_work"},
-    {NodeForceSource::joints, solid::joint_table, "corner_force", NodeForceRows::slots, NodeForceBook::joint,
-     "joint_work"},
+    {NodeForceSource::tets, solid::tet_table, "corner_force", NodeForceRows::slots, NodeForceBook::tet},
+    {NodeForceSource::joints, solid::joint_table, "corner_force", NodeForceRows::slots, NodeForceBook::joint},
     {NodeForceSource::loaded_faces, solid::face_table, "corner_force", NodeForceRows::slots,
-     NodeForceBook::external, "external_work"},
-    {NodeForceSource::fluid, solid::node_table, "fluid_force", NodeForceRows::node, NodeForceBook::external,
-     "external_work"},
-    {NodeForceSource::crack, solid::node_table, "crack_force", NodeForceRows::node, NodeForceBook::external,
-     "external_work"},
+     NodeForceBook::external},
+    {NodeForceSource::fluid, solid::node_table, "fluid_force", NodeForceRows::node, NodeForceBook::external},
+    {NodeForceSource::crack, solid::node_table, "crack_force", NodeForceRows::node, NodeForceBook::external},
     {NodeForceSource::contact, solid::node_table, "contact_force", NodeForceRows::node,
-     NodeForceBook::contact, "contact_work"},
+     NodeForceBook::contact},
 };
 
 constexpr const NodeForceRouteEntry& route_entry(NodeForceSource s) {
@@ -71,20 +70,11 @@ constexpr const char* node_force_column(NodeForceSource s) {
   return route_entry(s).column;
 }
 
-// The solid_energy column of a book's work.
-constexpr const char* book_work(NodeForceBook b) {
-  for (const NodeForceRouteEntry& e : kNodeForceRoute)
-    if (e.book == b) return e.work;
-  return nullptr;
-}
-inline constexpr size_t kNodeForceBooks = 4;
-
 namespace detail {
 constexpr bool route_is_consistent() {
   for (size_t i = 0; i < std::size(kNodeForceRoute); ++i) {
     const NodeForceRouteEntry& e = kNodeForceRoute[i];
-    if (static_cast<size_t>(e.source) != i) return false;             // route_entry indexes by source
-    if (std::string_view(e.work) != book_work(e.book)) return false;  // one column per book
+    if (static_cast<size_t>(e.source) != i) return false;  // route_entry indexes by source
     // The slot sources are kernels::ForceSlots's sources 0, 1, 2: tets, joints, loaded faces, whose work
     // the kernel books as work[0], [1], [2]; node rows come after them.
     if ((i < 3) != (e.rows == NodeForceRows::slots)) return false;

@@ -45,7 +45,7 @@ Access NodeIntegrationSystem::access() const {
   for (const NodeForceRouteEntry& e : kNodeForceRoute) {
     if (!uses(e)) continue;
     reads.push_back(col(e.table, e.column));
-    const std::string work = col(E, e.work);
+    const std::string work = col(E, kBookWork[static_cast<size_t>(e.book)]);
     if (std::find(writes.begin(), writes.end(), work) == writes.end()) writes.push_back(work);
   }
   if (damped_) writes.push_back(col(E, "damping"));
@@ -115,7 +115,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
     const size_t b = static_cast<size_t>(e.book);
     if (!uses(e) || booked[b]) continue;
     booked[b] = true;
-    energy.span<double>(e.work)[0] += total.work[b];
+    energy.span<double>(kBookWork[b])[0] += total.work[b];
   }
   if (damped_) energy.span<double>("damping")[0] += total.damping;
 }

@@ -60,6 +60,15 @@ void Column::move_row(size_t from, size_t to) {
   std::memcpy(buffer_.data() + to * row_bytes, buffer_.data() + from * row_bytes, row_bytes);
 }
 
+void Column::swap_values(Column& other) {
+  if (other.type_ != type_ || other.components_ != components_ || other.rows_ != rows_)
+    throw Error("column " + key() + " (" + std::to_string(rows_) + " x " + std::to_string(components_) + " " +
+                element_type_name(type_) + ") cannot swap values with " + other.key() + " (" +
+                std::to_string(other.rows_) + " x " + std::to_string(other.components_) + " " +
+                element_type_name(other.type_) + ")");
+  buffer_.swap(other.buffer_);
+}
+
 Column& Table::add_column(std::string name, ElementType type, int components) {
   if (find(name)) throw Error("table " + name_ + " already has a column " + name);
   if (components < 1) throw Error("column " + name_ + "." + name + " needs at least one component");

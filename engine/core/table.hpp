@@ -112,6 +112,9 @@ class Column {
   const std::optional<IndexTarget>& index_target() const { return index_target_; }
   // Moves row `from` onto row `to` (used by swap-remove).
   void move_row(size_t from, size_t to);
+  // Exchanges the values with a column of the same type, width and rows (names and index targets stay):
+  // a solver that computes a step into a spare column makes it the store's without copying a value.
+  void swap_values(Column& other);
 
  private:
   template <class T>

@@ -59,7 +59,7 @@ void ConcurrentFluidStep::join() {
   }
   wait_seconds_ += seconds_since(t0);
   ++steps_;
-  step_.publish();
+  step_.commit();
 }
 
 }  // namespace rift

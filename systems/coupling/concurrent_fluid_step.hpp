@@ -4,9 +4,10 @@
 //
 // launch() must be called inside the step graph's task arena: the task then shares the run's threads, and
 // the fluid's own parallel_for uses whichever of them the solid leaves idle. The task only advances the
-// solver (FluidStepSystem::advance): it reads and writes the solver's own arrays, never a column of the
-// store, so the run loop may write outputs, metrics and health checks while it runs. join() waits for it
-// (helping with its work) and publishes its result into the store.
+// solver (FluidStepSystem::advance): it reads the committed fluid state and writes the solver's spares, the
+// pressure preconditioner's coefficients and the pressure subscale, which only the fluid step reads, so
+// the run loop may write outputs, metrics and health checks of the last committed step while it runs.
+// join() waits for it (helping with its work) and commits its step into the store.
 #include <tbb/task_group.h>
 
 #include <cstdint>
@@ -22,7 +23,7 @@ class ConcurrentFluidStep {
 
   // Starts the fluid step from start_time (the window's start). Inside the step graph's arena.
   void launch(double start_time);
-  // Waits for the task, rethrows what it threw, and publishes its step into the store. Inside the step
+  // Waits for the task, rethrows what it threw, and commits its step into the store. Inside the step
   // graph's arena; does nothing when no task runs.
   void join();
   bool running() const { return running_; }

@@ -114,9 +114,6 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
                        std::vector<std::string> coupling_reads)
     : store_(store), spec_(spec), substeps_(substeps), surface_names_(mesh.surface_names) {
   build_solver(mesh);
-  const auto v0 = spec.initial_velocity;
-  solver_->set_velocity([v0](const fluid::Vec3&, double) { return v0; });
-  solver_->set_pressure(spec.initial_pressure);
   Table& nodes = store_.add_table(fluid::node_table);
   nodes.add<double>("x", 3);
   nodes.add<double>("velocity", 3);
@@ -138,10 +135,10 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
   if (spec.adapt) step.add<int64_t>("remeshes", 1);
   step.resize(1);
   store_mesh(mesh);
-  const auto u = solver_->velocity();
-  std::copy(u.begin(), u.end(), nodes.span<double>("velocity").begin());
-  const auto p = solver_->pressure();
-  std::copy(p.begin(), p.end(), nodes.span<double>("pressure").begin());
+  use_store_state();
+  const auto v0 = spec.initial_velocity;
+  solver_->set_velocity([v0](const fluid::Vec3&, double) { return v0; });
+  solver_->set_pressure(spec.initial_pressure);
   step_ = std::make_unique<FluidStepSystem>(store_, *solver_, substeps_, std::move(coupling_reads));
 }
 
@@ -164,11 +161,19 @@ void FluidModel::build_solver(const TetMesh& mesh) {
   }
 }
 
+void FluidModel::use_store_state() {
+  Table& nodes = store_.table(fluid::node_table);
+  Table& tets = store_.table(fluid::tet_table);
+  solver_->use_state({&nodes.column("velocity"), &nodes.column("previous_velocity"),
+                      &nodes.column("pressure"), &tets.column("pressure_matrix_coefficient"),
+                      &tets.column("pressure_subscale"),
+                      &store_.table(fluid::step_table).column("has_previous")});
+}
+
 FluidModel::~FluidModel() = default;
 
-// Outputs and metrics read the fluid's state from the store, never from the solver: with the concurrent
-// coupling the solver may be mid-step in a task while the run loop writes them (the store holds the last
-// published step, the same values as the solver's in the sequential coupling).
+// Outputs and metrics read the fluid's committed state: with the concurrent coupling a step may be in
+// flight in a task while the run loop writes them.
 void FluidModel::cell_fields() {
   const auto u = store_.table(fluid::node_table).span<double>("velocity");
   const auto conn = solver_->tets();
@@ -341,16 +346,13 @@ int64_t FluidModel::mesh_revision() const {
   return spec_.adapt ? store_.table(fluid::step_table).span<const int64_t>("remeshes")[0] : 0;
 }
 
+// The checkpoint's values are in the fluid tables already, which are the solver's state.
 void FluidModel::restored(const StepContext& at) {
   if (spec_.adapt) {  // the checkpoint's mesh, maybe not the scene's first one
     build_solver(mesh_from_store());
+    use_store_state();
   }
-  const Table& nodes = store_.table(fluid::node_table);
-  const bool previous = store_.table(fluid::step_table).span<const uint8_t>("has_previous")[0] != 0;
-  solver_->restore_state(at.time, nodes.span<double>("velocity"), nodes.span<double>("pressure"),
-                         store_.table(fluid::tet_table).span<double>("pressure_matrix_coefficient"),
-                         previous ? nodes.span<const double>("previous_velocity") : std::span<const double>{},
-                         store_.table(fluid::tet_table).span<const double>("pressure_subscale"));
+  solver_->restored(at.time);
   step_->restore_report();
 }
 

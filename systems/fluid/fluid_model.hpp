@@ -1,8 +1,9 @@
 #pragma once
 // The fluid in a run: a FluidSolver (incompressible Navier-Stokes, docs/fluid.md) on its own mesh, built
 // from the scene's fluid section, stepped by FluidStepSystem with the fixed step fluid.dt. Its state lives
-// in the fluid tables (fluid_tables.hpp) so outputs, the state hash and checkpoints cover it; restored()
-// hands a checkpoint's state back to the solver so a restart continues bit for bit.
+// in the fluid tables (fluid_tables.hpp), whose columns the solver works on, so outputs, the state hash
+// and checkpoints cover it; restored() has the solver take up a checkpoint's values so a restart continues
+// bit for bit.
 //
 // Outputs: the grid "fluid" (velocity, pressure per node; divergence, cfl per cell), time-series columns
 // fluid_*, summary metrics.fluid. Health: non-finite velocity or pressure, or (on_picard_failure: stop) a
@@ -58,6 +59,7 @@ class FluidModel : public Model {
  private:
   void cell_fields();                      // divergence_ and cfl_ from the current velocity
   void build_solver(const TetMesh& mesh);  // a new solver on `mesh` (in place of the old one, if any)
+  void use_store_state();                  // the fluid tables' state columns become the solver's
   void store_mesh(const TetMesh& mesh);    // the fluid tables' rows, mesh columns and boundary faces
   TetMesh mesh_from_store() const;         // fluid.adapt: the mesh the store holds
 

@@ -100,7 +100,7 @@ TetMesh FluidModel::mesh_from_store() const {
 }
 
 void FluidModel::remesh(const TetMesh& mesh, double time) {
-  // The old mesh and state, from the store (what the last step published).
+  // The old mesh and state, from the store (what the last step committed).
   const Table& nodes = store_.table(fluid::node_table);
   const Table& tets = store_.table(fluid::tet_table);
   const std::vector<double> old_x(nodes.span<const double>("x").begin(), nodes.span<const double>("x").end());
@@ -132,15 +132,20 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
 
   build_solver(mesh);
   store_mesh(mesh);
+  use_store_state();
   // The fresh solver takes the carried-over state (the next step imposes the boundary values on Dirichlet
-  // nodes); its pressure preconditioner is assembled at that step (coefficients 0: not assembled yet).
-  const std::vector<double> no_coefficients(mesh.tets.size(), 0.0);
-  solver_->restore_state(time, u, p, no_coefficients, u_old);
+  // nodes); its pressure preconditioner is assembled at that step (coefficients 0: not assembled yet), and
+  // the pressure subscale starts from zero on the new cells.
   Table& out = store_.table(fluid::node_table);
-  const auto su = solver_->velocity(), sp = solver_->pressure(), sprev = solver_->previous_velocity();
-  std::copy(su.begin(), su.end(), out.span<double>("velocity").begin());
-  std::copy(sp.begin(), sp.end(), out.span<double>("pressure").begin());
-  if (previous) std::copy(sprev.begin(), sprev.end(), out.span<double>("previous_velocity").begin());
+  std::copy(u.begin(), u.end(), out.span<double>("velocity").begin());
+  std::copy(p.begin(), p.end(), out.span<double>("pressure").begin());
+  if (previous) std::copy(u_old.begin(), u_old.end(), out.span<double>("previous_velocity").begin());
+  Table& cells = store_.table(fluid::tet_table);
+  for (const char* c : {"pressure_matrix_coefficient", "pressure_subscale"}) {
+    const auto values = cells.span<double>(c);
+    std::fill(values.begin(), values.end(), 0.0);
+  }
+  solver_->restored(time);
   store_.table(fluid::step_table).span<int64_t>("remeshes")[0] += 1;
 }
 

@@ -20,6 +20,25 @@ double max_abs(std::span<const double> v) {
 
 }  // namespace
 
+// The state of a solver used on its own (no store): the same columns a run's fluid tables hold.
+struct FluidSolver::OwnState {
+  Column velocity{"fluid_solver", "velocity", ElementType::f64, 3};
+  Column previous_velocity{"fluid_solver", "previous_velocity", ElementType::f64, 3};
+  Column pressure{"fluid_solver", "pressure", ElementType::f64, 1};
+  Column pressure_matrix_coefficient{"fluid_solver", "pressure_matrix_coefficient", ElementType::f64, 1};
+  Column pressure_subscale{"fluid_solver", "pressure_subscale", ElementType::f64, 3};
+  Column has_previous{"fluid_solver", "has_previous", ElementType::u8, 1};
+  OwnState(size_t nodes, size_t tets) {
+    for (Column* c : {&velocity, &previous_velocity, &pressure}) c->resize(nodes);
+    for (Column* c : {&pressure_matrix_coefficient, &pressure_subscale}) c->resize(tets);
+    has_previous.resize(1);
+  }
+  FluidStateColumns columns() {
+    return {&velocity,          &previous_velocity, &pressure, &pressure_matrix_coefficient,
+            &pressure_subscale, &has_previous};
+  }
+};
+
 FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vector<FluidBoundary> boundaries)
     : settings_(settings), boundaries_(std::move(boundaries)) {
   if (!(settings_.dt > 0.0) || settings_.theta < 0.5 || settings_.theta > 1.0 || !(settings_.rho > 0.0) ||
@@ -110,10 +129,15 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   closed_ = !any_pressure;
   if (closed_) phi_fixed_[0] = 1;
 
-  u_.assign(3 * nn, 0.0);
-  for (auto* v : {&u_old_, &u_star_, &u_iter_, &xi_, &w_, &eta_, &body_force_, &vel_value_, &rhs_})
+  own_state_ = std::make_unique<OwnState>(nn, nt);
+  columns_ = own_state_->columns();
+  next_velocity_ = std::make_unique<Column>("fluid_solver", "next_velocity", ElementType::f64, 3);
+  next_pressure_ = std::make_unique<Column>("fluid_solver", "next_pressure", ElementType::f64, 1);
+  next_velocity_->resize(nn);
+  next_pressure_->resize(nn);
+  for (auto* v : {&u_star_, &u_iter_, &xi_, &w_, &eta_, &body_force_, &vel_value_, &rhs_})
     v->assign(3 * nn, 0.0);
-  for (auto* v : {&visc_diag_, &p_, &p_iter_, &rhs_c_, &x_c_, &prhs_, &cont_res_, &phi_}) v->assign(nn, 0.0);
+  for (auto* v : {&visc_diag_, &p_iter_, &rhs_c_, &x_c_, &prhs_, &cont_res_, &phi_}) v->assign(nn, 0.0);
   corr_.assign(3 * nn, 0.0);
   own_sigma_.assign(nt, 0.0);
   own_target_.assign(3 * nt, 0.0);
@@ -122,8 +146,7 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
   source_.assign(3 * nt, 0.0);
   continuity_weight_.assign(nt, 1.0);
   volume_source_.assign(nt, 0.0);
-  for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &pcoef_matrix_, &div_}) v->assign(nt, 0.0);
-  subscale_.assign(3 * nt, 0.0);
+  for (auto* v : {&supg_tau_, &tau_p_, &c_cell_, &pcoef_, &div_}) v->assign(nt, 0.0);
   subscale_rhs_.assign(nn, 0.0);
 
   momentum_ = p1_pattern(static_cast<int32_t>(nn), tet_nodes_);
@@ -149,7 +172,8 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
 }
 
 FluidSolver::~FluidSolver() = default;
-// The input spans move with the vectors they view: a vector's move keeps its buffer.
+// The input spans move with the vectors they view (a vector's move keeps its buffer), and the state's
+// columns with the heap objects that hold them.
 FluidSolver::FluidSolver(FluidSolver&&) noexcept = default;
 FluidSolver& FluidSolver::operator=(FluidSolver&&) noexcept = default;
 
@@ -165,16 +189,37 @@ void FluidSolver::read_coupling_inputs(std::span<const double> sigma, std::span<
   dilatation_ = dilatation.empty() ? std::span<const double>(own_dilatation_) : dilatation;
 }
 
+void FluidSolver::use_state(const FluidStateColumns& c) {
+  const size_t nn = node_count(), nt = volume_.size();
+  const auto fits = [](const Column* col, ElementType type, int width, size_t rows) {
+    return col != nullptr && col->type() == type && col->components() == width && col->rows() == rows;
+  };
+  if (!fits(c.velocity, ElementType::f64, 3, nn) || !fits(c.previous_velocity, ElementType::f64, 3, nn) ||
+      !fits(c.pressure, ElementType::f64, 1, nn) ||
+      !fits(c.pressure_matrix_coefficient, ElementType::f64, 1, nt) ||
+      !fits(c.pressure_subscale, ElementType::f64, 3, nt) || c.has_previous == nullptr ||
+      c.has_previous->type() != ElementType::u8 || c.has_previous->rows() < 1)
+    throw std::logic_error("FluidSolver::use_state: the state's columns do not fit the mesh (" +
+                           std::to_string(nn) + " nodes, " + std::to_string(nt) + " tets)");
+  columns_ = c;
+}
+
 void FluidSolver::set_velocity(const VectorField& u0) {
   const size_t nn = node_count();
+  const std::span<double> u = state(columns_.velocity);
   for (size_t n = 0; n < nn; ++n) {
     const Vec3 v = u0({x_[3 * n], x_[3 * n + 1], x_[3 * n + 2]}, time_);
-    for (int d = 0; d < 3; ++d) u_[3 * n + d] = v[d];
+    for (int d = 0; d < 3; ++d) u[3 * n + d] = v[d];
   }
   apply_velocity_bc(time_);
-  for (size_t i = 0; i < u_.size(); ++i)
-    if (vel_fixed_by_[i] != -1) u_[i] = vel_value_[i];
-  have_previous_ = false;
+  for (size_t i = 0; i < u.size(); ++i)
+    if (vel_fixed_by_[i] != -1) u[i] = vel_value_[i];
+  columns_.has_previous->values<uint8_t>()[0] = 0;
+}
+
+void FluidSolver::set_pressure(double p0) {
+  const std::span<double> p = state(columns_.pressure);
+  std::fill(p.begin(), p.end(), p0);
 }
 
 void FluidSolver::apply_velocity_bc(double t) {
@@ -259,7 +304,7 @@ void FluidSolver::project_convective_derivative() {
 void FluidSolver::assemble_pressure_matrix() {
   assembly_.laplacian_matrix(
       {tet_nodes_, volume_, grad_, pcoef_, slot_, diag_slot_, phi_fixed_, phi_value_, pressure_mat_.val, {}});
-  pcoef_matrix_ = pcoef_;
+  std::copy(pcoef_.begin(), pcoef_.end(), state(columns_.pressure_matrix_coefficient).begin());
   amg_->set_matrix(pressure_mat_);
   pressure_matrix_stale_ = false;
 }
@@ -375,32 +420,38 @@ FluidSolver::SchurStats FluidSolver::schur_solve(std::span<const double> b, std:
 // max|u|, but at least the speed sqrt(pressure range / rho) the pressure differences could drive: in a fluid
 // at rest (hydrostatic, or around a solid at rest) u is round-off, and a change relative to it alone never
 // falls below a tolerance.
-double FluidSolver::velocity_scale() const {
-  const double umax = max_abs(u_);
-  if (p_.empty()) return umax;
-  const auto [pmin, pmax] = std::minmax_element(p_.begin(), p_.end());
+double FluidSolver::velocity_scale(std::span<const double> u, std::span<const double> p) const {
+  const double umax = max_abs(u);
+  if (p.empty()) return umax;
+  const auto [pmin, pmax] = std::minmax_element(p.begin(), p.end());
   return std::max(umax, std::sqrt((*pmax - *pmin) / settings_.rho));
 }
 
-FluidStepReport FluidSolver::step() {
+FluidStepReport FluidSolver::advance() {
   const FluidSettings& s = settings_;
   const size_t nn = node_count(), nt = volume_.size();
   const double t_new = time_ + s.dt;
   FluidStepReport rep;
   const int momentum_failures_at_start = momentum_failures_;
   schur_reference_ = 0.0;
+  // The iterates live in the spares; u^n and p^n stay as committed.
+  u_old_ = state(columns_.velocity);
+  const std::span<const double> p_n = state(columns_.pressure);
+  u_ = next_velocity_->values<double>();
+  p_ = next_pressure_->values<double>();
+  const std::span<double> pcoef_matrix = state(columns_.pressure_matrix_coefficient);
+  const std::span<double> subscale = state(columns_.pressure_subscale);
   apply_velocity_bc(t_new);
-  schur_floor_ = 1e-12 * velocity_scale() * residual_area_;
-  if (s.picard_extrapolate && have_previous_) {
-    // u_old_ still holds u^{n-1}: first iterate 2 u^n - u^{n-1}, boundary values at t^{n+1}.
-    for (size_t i = 0; i < 3 * nn; ++i) {
-      const double un = u_[i];
-      u_[i] = vel_fixed_by_[i] != -1 ? vel_value_[i] : 2.0 * un - u_old_[i];
-      u_old_[i] = un;
-    }
+  schur_floor_ = 1e-12 * velocity_scale(u_old_, p_n) * residual_area_;
+  if (s.picard_extrapolate && has_previous()) {
+    // First iterate 2 u^n - u^{n-1}, boundary values at t^{n+1}.
+    const std::span<const double> u_prev = state(columns_.previous_velocity);
+    for (size_t i = 0; i < 3 * nn; ++i)
+      u_[i] = vel_fixed_by_[i] != -1 ? vel_value_[i] : 2.0 * u_old_[i] - u_prev[i];
   } else {
-    u_old_ = u_;
+    std::copy(u_old_.begin(), u_old_.end(), u_.begin());
   }
+  std::copy(p_n.begin(), p_n.end(), p_.begin());
   if (body_force_fn_) {
     for (size_t n = 0; n < nn; ++n) {
       const Vec3 xn{x_[3 * n], x_[3 * n + 1], x_[3 * n + 2]};
@@ -420,8 +471,8 @@ FluidStepReport FluidSolver::step() {
   project_gradient();
 
   for (int k = 0; k < s.picard_max_iterations; ++k) {
-    u_iter_ = u_;
-    p_iter_ = p_;
+    std::copy(u_.begin(), u_.end(), u_iter_.begin());
+    std::copy(p_.begin(), p_.end(), p_iter_.begin());
     for (size_t i = 0; i < 3 * nn; ++i)
       w_[i] = s.convection ? s.theta * u_[i] + (1.0 - s.theta) * u_old_[i] : 0.0;
     if (s.supg && s.convection) project_convective_derivative();
@@ -431,14 +482,14 @@ FluidStepReport FluidSolver::step() {
       // it), so it is rebuilt only when a coefficient drifted by more than 25 % since the last build.
       bool drift = pressure_matrix_stale_;
       for (size_t t = 0; t < nt && !drift; ++t)
-        drift = std::abs(pcoef_[t] - pcoef_matrix_[t]) > 0.25 * pcoef_matrix_[t];
+        drift = std::abs(pcoef_[t] - pcoef_matrix[t]) > 0.25 * pcoef_matrix[t];
       if (drift) {
         assemble_pressure_matrix();
         ++rep.amg_setups;
       }
       if (s.dynamic_subscale) {
         std::fill(subscale_rhs_.begin(), subscale_rhs_.end(), 0.0);
-        kernels::pressure_subscale_rhs(subscale_args(), subscale_, subscale_rhs_);
+        kernels::pressure_subscale_rhs(subscale_args(), subscale, subscale_rhs_);
       }
     }
     const int momentum_failures_before = momentum_failures_;
@@ -513,7 +564,7 @@ FluidStepReport FluidSolver::step() {
       kernels::scalar_laplacian_dirichlet_rhs({tet_nodes_,
                                                volume_,
                                                grad_,
-                                               pcoef_matrix_,
+                                               pcoef_matrix,
                                                slot_,
                                                diag_slot_,
                                                phi_fixed_,
@@ -544,7 +595,7 @@ FluidStepReport FluidSolver::step() {
     for (size_t i = 0; i < 3 * nn; ++i) du = std::max(du, std::abs(u_[i] - u_iter_[i]));
     for (size_t n = 0; n < nn; ++n) dp = std::max(dp, std::abs(p_[n] - p_iter_[n]));
     const double umax = max_abs(u_);
-    rep.velocity_change = du / std::max(velocity_scale(), 1e-300);
+    rep.velocity_change = du / std::max(velocity_scale(u_, p_), 1e-300);
     rep.pressure_change = dp / std::max({max_abs(p_), s.rho * umax * umax, 1e-300});
     rep.picard_iterations = k + 1;
     if (s.verbose)
@@ -560,7 +611,7 @@ FluidStepReport FluidSolver::step() {
   }
   rep.momentum_failures = momentum_failures_ - momentum_failures_at_start;
   // The subscale at t^{n+1} from the final p and its projected gradient (xi_ is that of p_).
-  if (s.dynamic_subscale) kernels::pressure_subscale_update(subscale_args(), p_, xi_, subscale_);
+  if (s.dynamic_subscale) kernels::pressure_subscale_update(subscale_args(), p_, xi_, subscale);
   // Diagnostics of u^{n+1}.
   kernels::p1_divergence(tet_nodes_, grad_, u_, div_);
   double l2 = 0.0;
@@ -575,39 +626,26 @@ FluidStepReport FluidSolver::step() {
   }
   rep.divergence_l2 = std::sqrt(l2);
   time_ = t_new;
-  have_previous_ = true;
   return rep;
 }
 
-void FluidSolver::restore_state(double t, std::span<const double> u, std::span<const double> p,
-                                std::span<const double> pressure_matrix_coefficients,
-                                std::span<const double> previous_velocity,
-                                std::span<const double> pressure_subscale) {
-  if (u.size() != u_.size() || p.size() != p_.size() || pressure_matrix_coefficients.size() != pcoef_.size())
-    throw std::invalid_argument("FluidSolver::restore_state: sizes do not match the mesh");
+void FluidSolver::commit() {
+  columns_.previous_velocity->swap_values(*columns_.velocity);  // u^{n-1} <- u^n
+  columns_.velocity->swap_values(*next_velocity_);              // u^n <- u^{n+1}; the spare: old u^{n-1}
+  columns_.pressure->swap_values(*next_pressure_);
+  columns_.has_previous->values<uint8_t>()[0] = 1;
+}
+
+void FluidSolver::restored(double t) {
   time_ = t;
-  std::copy(u.begin(), u.end(), u_.begin());
-  std::copy(p.begin(), p.end(), p_.begin());
-  have_previous_ = !previous_velocity.empty();
-  if (have_previous_) {
-    if (previous_velocity.size() != u_old_.size())
-      throw std::invalid_argument("FluidSolver::restore_state: previous velocity size does not match");
-    std::copy(previous_velocity.begin(), previous_velocity.end(), u_old_.begin());
-  }
-  if (!pressure_subscale.empty() && pressure_subscale.size() != subscale_.size())
-    throw std::invalid_argument("FluidSolver::restore_state: pressure subscale size does not match");
-  if (pressure_subscale.empty())
-    std::fill(subscale_.begin(), subscale_.end(), 0.0);
-  else
-    std::copy(pressure_subscale.begin(), pressure_subscale.end(), subscale_.begin());
   apply_velocity_bc(time_);
+  const std::span<const double> coefficients = state(columns_.pressure_matrix_coefficient);
   bool assembled = false;
-  for (double c : pressure_matrix_coefficients) assembled = assembled || c != 0.0;
+  for (double c : coefficients) assembled = assembled || c != 0.0;
   if (assembled) {
-    std::copy(pressure_matrix_coefficients.begin(), pressure_matrix_coefficients.end(), pcoef_.begin());
+    std::copy(coefficients.begin(), coefficients.end(), pcoef_.begin());
     assemble_pressure_matrix();
   } else {
-    std::fill(pcoef_matrix_.begin(), pcoef_matrix_.end(), 0.0);
     pressure_matrix_stale_ = true;
   }
 }

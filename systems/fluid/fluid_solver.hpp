@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/table.hpp"
 #include "engine/linear/csr_matrix.hpp"
 #include "engine/linear/fgmres.hpp"
 #include "engine/linear/hypre_pcg.hpp"
@@ -119,6 +120,21 @@ struct FluidStepReport {
   double cfl = 0.0;             // max_t |u_t| dt / h_t, h_t = longest edge
 };
 
+// Where the solver's state lives: columns of the store (the fluid tables, FluidModel) in a run, or the
+// solver's own for a solver used on its own. A step reads u^n, u^{n-1} and p^n, computes u^{n+1} and
+// p^{n+1} into spare columns of its own, and updates the preconditioner's coefficients and the pressure
+// subscale in place; commit() then swaps the spares with velocity and pressure (and velocity with
+// previous_velocity): no value is copied between the solver and the store, and until the commit the
+// columns hold the last committed step, whatever the step in flight is doing.
+struct FluidStateColumns {
+  Column* velocity = nullptr;                     // u^n, f64 x 3 per node
+  Column* previous_velocity = nullptr;            // u^{n-1}, f64 x 3 per node (valid when has_previous)
+  Column* pressure = nullptr;                     // p^n, f64 x 1 per node
+  Column* pressure_matrix_coefficient = nullptr;  // f64 x 1 per tet (restored())
+  Column* pressure_subscale = nullptr;            // f64 x 3 per tet (kernels/fluid_subscale.hpp)
+  Column* has_previous = nullptr;                 // u8, row 0: 1 once a step was committed
+};
+
 class FluidSolver {
  public:
   FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vector<FluidBoundary> boundaries);
@@ -162,33 +178,41 @@ class FluidSolver {
   // Body force per unit volume f(x, t) [N/m^3], evaluated at the nodes (theta-weighted in time).
   void set_body_force(VectorField f) { body_force_fn_ = std::move(f); }
 
+  // The state's columns from now on (sizes checked against the mesh); the solver's own until then.
+  void use_state(const FluidStateColumns& columns);
   void set_velocity(const VectorField& u0);  // at the current time; also sets u on Dirichlet nodes
   // A uniform pressure p^n (the first Picard iterate).
-  void set_pressure(double p0) { std::fill(p_.begin(), p_.end(), p0); }
+  void set_pressure(double p0);
   void set_time(double t) { time_ = t; }
 
-  FluidStepReport step();
+  // One time step: advance() computes it, commit() makes it the state. Between the two the state's
+  // columns still hold the last committed step (what a run's outputs read while the concurrent coupling's
+  // step is in flight); every advance() must be committed before the next. step() does both.
+  FluidStepReport advance();
+  void commit();
+  FluidStepReport step() {
+    FluidStepReport r = advance();
+    commit();
+    return r;
+  }
 
-  // Checkpoint/restart. Besides u and p a step depends on the coefficients the pressure matrix (the
-  // preconditioner, rebuilt only when they drift) was last assembled with: one per tet, all zero before
-  // the first assembly. restore_state with what velocity(), pressure() and these held at time t makes
-  // the next step bitwise the one the saving run took.
-  std::span<const double> pressure_matrix_coefficients() const { return pcoef_matrix_; }
-  // With picard_extrapolate the next step also depends on u^{n-1}: previous_velocity() (valid when
-  // has_previous()), restored by passing it (empty: none, as after set_velocity).
-  // With dynamic_subscale the next step also depends on the pressure subscale (3 per tet; empty: zero).
-  void restore_state(double t, std::span<const double> u, std::span<const double> p,
-                     std::span<const double> pressure_matrix_coefficients,
-                     std::span<const double> previous_velocity = {},
-                     std::span<const double> pressure_subscale = {});
-  std::span<const double> pressure_subscale() const { return subscale_; }
-  std::span<const double> previous_velocity() const { return u_old_; }
-  bool has_previous() const { return have_previous_; }
+  // The state's columns were written from outside (a checkpoint read back, a remesh's interpolation): take
+  // them up at time t. Besides u and p a step depends on the coefficients the pressure matrix (the
+  // preconditioner, rebuilt only when they drift) was last assembled with, one per tet (all zero: not
+  // assembled yet), on u^{n-1} (picard_extrapolate, when has_previous) and on the pressure subscale
+  // (dynamic_subscale): with the values a run held at t, the next step is bitwise the one it took.
+  void restored(double t);
+  std::span<const double> pressure_matrix_coefficients() const {
+    return state(columns_.pressure_matrix_coefficient);
+  }
+  std::span<const double> pressure_subscale() const { return state(columns_.pressure_subscale); }
+  std::span<const double> previous_velocity() const { return state(columns_.previous_velocity); }
+  bool has_previous() const { return columns_.has_previous->values<uint8_t>()[0] != 0; }
 
   double time() const { return time_; }
-  std::span<const double> velocity() const { return u_; }  // 3 per node
-  std::span<const double> pressure() const { return p_; }  // 1 per node
-  std::span<const double> nodes() const { return x_; }     // 3 per node
+  std::span<const double> velocity() const { return state(columns_.velocity); }  // 3 per node
+  std::span<const double> pressure() const { return state(columns_.pressure); }  // 1 per node
+  std::span<const double> nodes() const { return x_; }                           // 3 per node
   std::span<const int32_t> tets() const { return tet_nodes_; }
   std::span<const double> volumes() const { return volume_; }
   // The P1 shape-function gradients (12 per tet) and longest edges (1 per tet) of the mesh
@@ -217,7 +241,9 @@ class FluidSolver {
   void apply_velocity_bc(double t);
   void assemble_pressure_matrix();
   void project_convective_derivative();  // eta_ from w_ (kernels/fluid_convection_subscale.hpp)
-  double velocity_scale() const;         // for the Picard test and the Schur floor
+  // For the Picard test and the Schur floor, of a velocity and pressure.
+  double velocity_scale(std::span<const double> u, std::span<const double> p) const;
+  static std::span<double> state(Column* c) { return c->values<double>(); }
   // The continuity's weights for the element loops: empty while every weight is 1 (the plain equation).
   std::span<const double> continuity_weights() const {
     return weighted_ ? std::span<const double>(continuity_weight_) : std::span<const double>{};
@@ -241,18 +267,26 @@ class FluidSolver {
   std::vector<int32_t> pressure_fixed_by_;
   std::vector<uint8_t> phi_fixed_;
   std::vector<double> phi_value_;
-  // Fields.
-  std::vector<double> u_, u_old_, u_star_, u_iter_, p_, p_iter_, xi_, w_, body_force_;
+  // State: the columns it lives in, the solver's own (until use_state, or for a solver on its own: on the
+  // heap, so that a moved solver's pointers stay valid), and the spares a step computes u^{n+1} and
+  // p^{n+1} into (commit swaps them in).
+  struct OwnState;
+  std::unique_ptr<OwnState> own_state_;
+  FluidStateColumns columns_;
+  std::unique_ptr<Column> next_velocity_, next_pressure_;
+  // Fields of a step: u_ and p_ the iterates (the spares' values), u_old_ the step's u^n.
+  std::span<double> u_, p_;
+  std::span<const double> u_old_;
+  std::vector<double> u_star_, u_iter_, p_iter_, xi_, w_, body_force_;
   std::vector<double> eta_;  // projected convective derivative of w (3 per node)
   std::vector<double> own_sigma_, own_target_, own_dilatation_;  // zeros until a caller fills them
   std::span<const double> sigma_, target_, dilatation_;          // read_coupling_inputs
   std::vector<double> source_, continuity_weight_, volume_source_;
-  bool have_previous_ = false;  // u_old_ holds u^{n-1} at the start of a step (extrapolation)
-  std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, pcoef_matrix_, div_;
-  std::vector<double> subscale_, subscale_rhs_;  // u' (3 per tet) and its explicit continuity term
-  int momentum_failures_ = 0;                    // BiCGSTAB solves that missed their tolerance
-  bool weighted_ = false;                        // some continuity weight is below 1
-  std::vector<double> relative_flux_;            // (1 - w) c per tet, while weighted_
+  std::vector<double> supg_tau_, tau_p_, c_cell_, pcoef_, div_;
+  std::vector<double> subscale_rhs_;   // the pressure subscale's explicit continuity term
+  int momentum_failures_ = 0;          // BiCGSTAB solves that missed their tolerance
+  bool weighted_ = false;              // some continuity weight is below 1
+  std::vector<double> relative_flux_;  // (1 - w) c per tet, while weighted_
   // Linear algebra.
   CsrMatrix momentum_, pressure_mat_;
   std::array<CsrMatrix, 3> comp_;         // momentum with the Dirichlet rows of each component

@@ -26,29 +26,16 @@ void FluidStepSystem::run(const StepContext& ctx) {
   // The run's clock is authoritative (t = step x dt): no drift from summing dt, and a restart starts
   // from the same time bit for bit.
   advance(static_cast<double>(ctx.step + 1 - every_) * ctx.dt);
-  publish();
+  commit();
 }
 
 void FluidStepSystem::advance(double start_time) {
   solver_.set_time(start_time);
-  last_ = solver_.step();
+  last_ = solver_.advance();
 }
 
-void FluidStepSystem::publish() {
-  Table& nodes = store_.table(fluid::node_table);
-  const auto u = solver_.velocity();
-  const auto p = solver_.pressure();
-  const auto c = solver_.pressure_matrix_coefficients();
-  std::copy(u.begin(), u.end(), nodes.span<double>("velocity").begin());
-  std::copy(p.begin(), p.end(), nodes.span<double>("pressure").begin());
-  // u^{n-1} of the next step's extrapolated start (FluidSettings::picard_extrapolate): run state.
-  const auto u_prev = solver_.previous_velocity();
-  std::copy(u_prev.begin(), u_prev.end(), nodes.span<double>("previous_velocity").begin());
-  store_.table(fluid::step_table).span<uint8_t>("has_previous")[0] = solver_.has_previous() ? 1 : 0;
-  Table& tets = store_.table(fluid::tet_table);
-  std::copy(c.begin(), c.end(), tets.span<double>("pressure_matrix_coefficient").begin());
-  const auto sub = solver_.pressure_subscale();
-  std::copy(sub.begin(), sub.end(), tets.span<double>("pressure_subscale").begin());
+void FluidStepSystem::commit() {
+  solver_.commit();
   Table& step = store_.table(fluid::step_table);
   const fluid::FluidStepReport& r = last_;
   auto count = [&](const char* c) -> int64_t& { return step.span<int64_t>(c)[0]; };

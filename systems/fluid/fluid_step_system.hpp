@@ -1,7 +1,7 @@
 #pragma once
-// One fluid step: advances the FluidSolver from t to t + dt and copies its state (velocity, pressure,
-// pressure-matrix coefficients) and step report into the fluid tables, so outputs, the state hash and
-// checkpoints see the fluid like any other state.
+// One fluid step: advances the FluidSolver from t to t + dt on its state, which lives in the fluid tables
+// (FluidModel gives the solver their columns), commits it there, and writes the step's report into the
+// step table, so outputs, the state hash and checkpoints see the fluid like any other state.
 #include "engine/core/table.hpp"
 #include "engine/schedule/system.hpp"
 #include "systems/fluid/fluid_solver.hpp"
@@ -18,13 +18,15 @@ class FluidStepSystem : public System {
       : store_(store), solver_(solver), every_(every), coupling_reads_(std::move(coupling_reads)) {}
   std::string name() const override { return "fluid_step"; }
   Access access() const override;
-  void run(const StepContext& ctx) override;  // on the last step of each window: advance, then publish
+  void run(const StepContext& ctx) override;  // on the last step of each window: advance, then commit
 
   // The two halves of run, for the concurrent coupling (systems/coupling/concurrent_fluid_step.hpp), which
-  // advances in a task beside the solid's sub-steps and publishes after joining it. advance touches only
-  // the solver (never the store); publish copies the solver's state and the step's report into the store.
+  // advances in a task beside the solid's sub-steps and commits after joining it. advance reads the
+  // committed state and writes the solver's spares, the preconditioner's coefficients and the pressure
+  // subscale (columns nothing else reads); commit swaps the spares into velocity and pressure (no copy)
+  // and writes the step's report.
   void advance(double start_time);
-  void publish();
+  void commit();
   // After a restart whose fluid step was already taken: the report of that step, from the store.
   void restore_report();
 

@@ -5,7 +5,7 @@
 // fluid_node: x (3, position, fixed), velocity (3), pressure (1): the state after the last step;
 //            previous_velocity (3): the velocity before it (the next step's extrapolated start)
 // fluid_tet: nodes (i32 x4), pressure_matrix_coefficient (1): what the pressure preconditioner was last
-//            assembled with (part of the state a step depends on; see FluidSolver::restore_state);
+//            assembled with (part of the state a step depends on; see FluidSolver::restored);
 //            pressure_subscale (3): the dynamic pressure subscale u' (kernels/fluid_subscale.hpp), state
 // fluid_step: one row, the last step's report: the counts (i64) picard_iterations, velocity_iterations,
 //            schur_iterations, pressure_iterations, amg_setups; converged (u8, 1/0); the measures (f64)

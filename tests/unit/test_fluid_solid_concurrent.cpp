@@ -5,6 +5,7 @@
 // signal) continues bit for bit, and a failing fluid step stops the run with the fluid's diagnosis.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include "engine/core/error.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "systems/coupling/fluid_solid_tables.hpp"
+#include "systems/fluid/fluid_model.hpp"
+#include "systems/fluid/fluid_tables.hpp"
 #include "systems/simulation.hpp"
 #include "systems/solid_tables.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
@@ -52,6 +55,42 @@ TEST(FluidSolidConcurrent, ANeutrallyBuoyantBlockStaysAtRest) {
   EXPECT_LT(speed, 1e-9);
   EXPECT_GT(store.table(coupling::state_table).span<int64_t>("exchanges")[0], 3);
   EXPECT_EQ(store.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0], 0);
+}
+
+// The fluid's state is the store's: the solver works on the fluid tables' columns, and while a window's
+// fluid step is in flight they hold the last committed step (what outputs read), which the join replaces.
+TEST(FluidSolidConcurrent, TheFluidWorksOnTheStoresColumnsAndCommitsAtTheJoin) {
+  Simulation sim(concurrent_block(moving()), quiet(2));
+  const FluidModel* fluid = nullptr;
+  for (const auto& m : sim.world().models)
+    if (auto* f = dynamic_cast<const FluidModel*>(m.get())) fluid = f;
+  ASSERT_NE(fluid, nullptr);
+  const Store& store = sim.world().store;
+  const Table& nodes = store.table(fluid::node_table);
+  const Table& tets = store.table(fluid::tet_table);
+  const auto same_column = [&] {
+    EXPECT_EQ(fluid->solver().velocity().data(), nodes.span<const double>("velocity").data());
+    EXPECT_EQ(fluid->solver().pressure().data(), nodes.span<const double>("pressure").data());
+    EXPECT_EQ(fluid->solver().previous_velocity().data(),
+              nodes.span<const double>("previous_velocity").data());
+    EXPECT_EQ(fluid->solver().pressure_subscale().data(),
+              tets.span<const double>("pressure_subscale").data());
+    EXPECT_EQ(fluid->solver().pressure_matrix_coefficients().data(),
+              tets.span<const double>("pressure_matrix_coefficient").data());
+  };
+  same_column();
+  const int64_t window = fluid->substeps();
+  for (int w = 0; w < 3; ++w) {
+    sim.step_once();  // the window's fluid step is launched and runs beside the solid
+    const std::vector<double> committed(nodes.span<const double>("velocity").begin(),
+                                        nodes.span<const double>("velocity").end());
+    for (int64_t k = 1; k < window - 1; ++k) sim.step_once();
+    const auto now = nodes.span<const double>("velocity");
+    EXPECT_TRUE(std::equal(now.begin(), now.end(), committed.begin())) << "window " << w;
+    sim.step_once();  // the window's end: joined and committed
+    same_column();
+  }
+  EXPECT_NE(store.table(fluid::step_table).span<const uint8_t>("has_previous")[0], 0);
 }
 
 // Bitwise: which thread runs the fluid task, and what the solid does meanwhile, must not matter.

@@ -43,6 +43,31 @@ TEST(Table, GrowingKeepsValues) {
   EXPECT_EQ(w[6], 0.0);
 }
 
+// swap_values exchanges the values of two columns of the same shape (how a solver's step becomes the
+// store's without a copy) and refuses any other shape.
+TEST(Column, SwapValuesExchangesOnlyColumnsOfTheSameShape) {
+  Table t("fluid_node");
+  t.add<double>("velocity", 3);
+  t.add<double>("pressure", 1);
+  t.resize(4);
+  Column spare("solver", "next_velocity", ElementType::f64, 3);
+  spare.resize(4);
+  for (size_t i = 0; i < 12; ++i) spare.values<double>()[i] = double(i) + 0.5;
+  const double* was = spare.values<double>().data();
+  t.column("velocity").swap_values(spare);
+  EXPECT_EQ(t.span<double>("velocity").data(), was);  // the buffer moved, nothing was copied
+  EXPECT_EQ(t.span<double>("velocity")[11], 11.5);
+  for (double v : spare.values<double>()) EXPECT_EQ(v, 0.0);
+  EXPECT_EQ(t.column("velocity").key(), "fluid_node.velocity");  // names stay
+  EXPECT_THROW(t.column("pressure").swap_values(spare), Error);  // width
+  Column rows("solver", "r", ElementType::f64, 3);
+  rows.resize(5);
+  EXPECT_THROW(t.column("velocity").swap_values(rows), Error);  // rows
+  Column type("solver", "t", ElementType::f32, 3);
+  type.resize(4);
+  EXPECT_THROW(t.column("velocity").swap_values(type), Error);  // element type
+}
+
 // Blocks of 1 MiB or more take whole 2 MiB pages (aligned_buffer.cpp asks for huge pages on them): they
 // are 2 MiB aligned, and growing past that size keeps the contents and zero-fills the rest, as below it.
 TEST(AlignedBuffer, LargeBlocksAreHugePageAlignedAndKeepTheirContents) {

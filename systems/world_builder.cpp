@@ -9,6 +9,7 @@
 #include "engine/core/error.hpp"
 #include "engine/mesh/spatial_order.hpp"
 #include "systems/coupling/fluid_solid_model.hpp"
+#include "systems/coupling/fluid_solid_tables.hpp"
 #include "systems/fluid/fluid_model.hpp"
 #include "systems/fluid/fluid_tables.hpp"
 #include "systems/fracture_flow/fracture_flow_model.hpp"
@@ -70,10 +71,10 @@ void add_coupled_fluid(World& world, const Scene& scene, StepModels& models) {
     order_along_curve(*world.fluid_mesh);
   }
   // What the fluid step reads of the coupling's (the solver reads these columns in place).
-  const char* F = fluid::tet_table;
-  std::vector<std::string> coupling_reads{fluid::col(F, "solid_fraction"), fluid::col(F, "absorption"),
-                                          fluid::col(F, "solid_velocity")};
-  if (spec.dilatation) coupling_reads.push_back(fluid::col(F, "solid_dilatation"));
+  std::vector<std::string> coupling_reads{coupling::cell::solid_fraction.key(),
+                                          coupling::cell::absorption.key(),
+                                          coupling::cell::solid_velocity.key()};
+  if (spec.dilatation) coupling_reads.push_back(coupling::cell::solid_dilatation.key());
   auto model = std::make_unique<FluidModel>(world.store, *world.fluid_mesh, fluid, substeps,
                                             std::move(coupling_reads));
   FluidModel& f = *model;

@@ -38,6 +38,10 @@ struct ColumnRef {
 
   bool exists(const Store& s) const { return s.has(table) && s.table(table).has(name); }
 
+  // The column itself (for what takes a Column: a solver's state, a swap of values).
+  Column& column(Store& s) const { return checked(s.table(table)); }
+  const Column& column(const Store& s) const { return checked(s.table(table)); }
+
   std::span<T> in(Table& t) const { return checked(t).template values<T>(); }
   std::span<const T> in(const Table& t) const { return checked(t).template values<T>(); }
   std::span<T> in(Store& s) const { return in(s.table(table)); }

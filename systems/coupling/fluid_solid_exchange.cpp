@@ -99,12 +99,12 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
                                        ExchangePairs& pairs)
     : store_(store), solver_(solver), settings_(settings), pairs_(pairs) {
   Table& ft = store_.table(fluid::tet_table);
-  ft.add<double>("solid_volume", 1);
-  ft.add<double>("solid_fraction", 1);
-  ft.add<double>("solid_velocity", 3);
-  ft.add<double>("absorption", 1);
+  coupling::cell::solid_volume.create(ft);
+  coupling::cell::solid_fraction.create(ft);
+  coupling::cell::solid_velocity.create(ft);
+  coupling::cell::absorption.create(ft);
   if (settings_.dilatation) {
-    ft.add<double>("solid_dilatation", 1);
+    coupling::cell::solid_dilatation.create(ft);
     // The solid's volumes at the last exchange, for its mean rate of volume change over each window; at
     // first those of the initial configuration, so the exchange at t = 0 sees no change.
     Table& solid_tets = store_.table(solid::tet_table);
@@ -114,8 +114,8 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
         store_.table(solid::node_table).span<const double>("x"), solid_tets.span<const int32_t>("nodes"), 0.0,
         solid_tets.span<double>("volume_at_exchange"), pairs_.solid_dilatation, 0, solid_tets.size());
   }
-  ft.add<double>("velocity_before", 3);
-  if (settings_.network_inlet) ft.add<double>("network_cell", 1);
+  coupling::cell::velocity_before.create(ft);
+  if (settings_.network_inlet) coupling::cell::network_cell.create(ft);
   const size_t ns = store_.table(solid::tet_table).size();
   pairs_.solid_ids.resize(ns);
   std::iota(pairs_.solid_ids.begin(), pairs_.solid_ids.end(), 0);
@@ -151,16 +151,15 @@ void SolidToFluidSystem::fluid_mesh_changed() {
 
 Access SolidToFluidSystem::access() const {
   using solid::col;
-  const char* F = fluid::tet_table;
-  Access a{
-      {col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
-       fluid::col(fluid::node_table, "velocity")},
-      {fluid::col(F, "solid_volume"), fluid::col(F, "solid_fraction"), fluid::col(F, "solid_velocity"),
-       fluid::col(F, "absorption"), fluid::col(F, "velocity_before"), col(coupling::state_table, "pairs"),
-       col(coupling::state_table, "cut_cells"), col(coupling::state_table, "solid_volume")}};
+  Access a{{col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
+            fluid::node::velocity.key()},
+           {coupling::cell::solid_volume.key(), coupling::cell::solid_fraction.key(),
+            coupling::cell::solid_velocity.key(), coupling::cell::absorption.key(),
+            coupling::cell::velocity_before.key(), col(coupling::state_table, "pairs"),
+            col(coupling::state_table, "cut_cells"), col(coupling::state_table, "solid_volume")}};
   if (settings_.dilatation)
     for (const std::string& c :
-         {col(solid::tet_table, "volume_at_exchange"), fluid::col(F, "solid_dilatation")})
+         {col(solid::tet_table, "volume_at_exchange"), coupling::cell::solid_dilatation.key()})
       a.writes.push_back(c);
   if (settings_.network_inlet) {
     a.reads.push_back(col(fracture_flow::books_table, "injected"));
@@ -168,7 +167,7 @@ Access SolidToFluidSystem::access() const {
       a.reads.push_back(col(solid::joint_table, "broken"));
       a.reads.push_back(col(solid::joint_table, "tets"));
     }
-    a.writes.push_back(fluid::col(F, "network_cell"));
+    a.writes.push_back(coupling::cell::network_cell.key());
     a.writes.push_back(col(coupling::state_table, "inlet_injected"));
     a.writes.push_back(col(coupling::state_table, "inlet_sink_mass"));
   }
@@ -256,16 +255,16 @@ void SolidToFluidSystem::exchange() {
       volume,
       pairs_.solid_velocity,
       pairs_.solid_dilatation,
-      ft.span<double>("solid_volume"),
-      ft.span<double>("solid_fraction"),
-      ft.span<double>("solid_velocity"),
-      ft.span<double>("absorption"),
+      coupling::cell::solid_volume.in(ft),
+      coupling::cell::solid_fraction.in(ft),
+      coupling::cell::solid_velocity.in(ft),
+      coupling::cell::absorption.in(ft),
       pairs_.pair_weight,
-      settings_.dilatation ? ft.span<double>("solid_dilatation") : std::span<double>{}};
-  const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
+      settings_.dilatation ? coupling::cell::solid_dilatation.in(ft) : std::span<double>{}};
+  const auto fluid_u = fluid::node::velocity.in(store_);
   parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
     kernels::solid_to_fluid_cells(cells, b, e);
-    kernels::tet_mean_vectors(fluid_u, solver_.tets(), ft.span<double>("velocity_before"), b, e);
+    kernels::tet_mean_vectors(fluid_u, solver_.tets(), coupling::cell::velocity_before.in(ft), b, e);
   });
   if (settings_.network_inlet) {
     network_sink();
@@ -295,9 +294,8 @@ void SolidToFluidSystem::network_sink() {
   const double dm = injected - seen;
   seen = injected;
   state.span<double>("inlet_sink_mass")[0] += dm;
-  find_inlet_cells(settings_, solver_.nodes(), solver_.tets(),
-                   store_.table(fluid::tet_table).span<const double>("solid_fraction"), solver_.volumes(),
-                   solver_.pressure(), pairs_);
+  find_inlet_cells(settings_, solver_.nodes(), solver_.tets(), coupling::cell::solid_fraction.in(store_),
+                   solver_.volumes(), solver_.pressure(), pairs_);
   auto source = solver_.volume_source();
   std::fill(source.begin(), source.end(), 0.0);
   for (size_t i = 0; i < pairs_.inlet_cells.size(); ++i) {
@@ -332,7 +330,7 @@ void SolidToFluidSystem::mark_network_cells() {
     for (size_t j = 0; j < broken.size(); ++j)
       if (broken[j] != 0) network_tet_[size_t(tets[2 * j])] = network_tet_[size_t(tets[2 * j + 1])] = 1;
   }
-  const auto owned = store_.table(fluid::tet_table).span<double>("network_cell");
+  const auto owned = coupling::cell::network_cell.in(store_);
   const auto& list = pairs_.broad.pairs;
   parallel_for(owned.size(), kTetGrain, [&](size_t b, size_t e) {
     for (size_t k = b; k < e; ++k) {
@@ -348,15 +346,15 @@ void SolidToFluidSystem::mark_network_cells() {
 void SolidToFluidSystem::restore_solver() {
   const Table& ft = store_.table(fluid::tet_table);
   solver_.read_coupling_inputs(
-      ft.span<const double>("absorption"), ft.span<const double>("solid_velocity"),
-      settings_.dilatation ? ft.span<const double>("solid_dilatation") : std::span<const double>{});
+      coupling::cell::absorption.in(ft), coupling::cell::solid_velocity.in(ft),
+      settings_.dilatation ? coupling::cell::solid_dilatation.in(ft) : std::span<const double>{});
   if (settings_.fluid_continuity) {
-    const auto fraction = ft.span<double>("solid_fraction");
+    const auto fraction = coupling::cell::solid_fraction.in(ft);
     const auto weight = solver_.continuity_weight();
     for (size_t k = 0; k < fraction.size(); ++k) weight[k] = std::clamp(1.0 - fraction[k], 0.0, 1.0);
   }
   if (settings_.network_inlet) {
-    const auto owned = ft.span<double>("network_cell");
+    const auto owned = coupling::cell::network_cell.in(ft);
     const auto weight = solver_.continuity_weight();
     for (size_t k = 0; k < owned.size(); ++k)
       if (owned[k] != 0.0) weight[k] = 0.0;
@@ -366,10 +364,9 @@ void SolidToFluidSystem::restore_solver() {
 
 Access FluidToSolidSystem::access() const {
   using solid::col;
-  const char* F = fluid::tet_table;
   const char* S = coupling::state_table;
-  Access a{{fluid::col(fluid::node_table, "velocity"), fluid::col(F, "solid_velocity"),
-            fluid::col(F, "velocity_before"), fluid::col(F, "absorption"), fluid::col(F, "nodes"),
+  Access a{{fluid::node::velocity.key(), coupling::cell::solid_velocity.key(),
+            coupling::cell::velocity_before.key(), coupling::cell::absorption.key(), fluid::tet::nodes.key(),
             col(solid::tet_table, "nodes")},
            {col(solid::node_table, node_force_column(NodeForceSource::fluid)), col(S, "exchanges"),
             col(S, "penalty_scale"), col(S, "force"), col(S, "penalty"), col(S, "absorption"),
@@ -380,8 +377,8 @@ Access FluidToSolidSystem::access() const {
     a.reads.push_back(col(solid::face_table, "nodes"));
   }
   if (!pairs_.wet_faces.empty() || settings_.network_inlet) {  // the fluid's pressure at points
-    a.reads.push_back(fluid::col(fluid::node_table, "x"));
-    a.reads.push_back(fluid::col(fluid::node_table, "pressure"));
+    a.reads.push_back(fluid::node::x.key());
+    a.reads.push_back(fluid::node::pressure.key());
   }
   if (!pairs_.wet_faces.empty()) a.writes.push_back(col(solid::face_table, "fluid_pressure"));
   if (settings_.network_inlet) a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
@@ -399,8 +396,8 @@ void FluidToSolidSystem::run(const StepContext&) {
 
 void FluidToSolidSystem::exchange(bool initial) {
   const Table& ft = store_.table(fluid::tet_table);
-  const auto fluid_tets = ft.span<int32_t>("nodes");
-  const auto fluid_u = store_.table(fluid::node_table).span<double>("velocity");
+  const auto fluid_tets = fluid::tet::nodes.in(ft);
+  const auto fluid_u = fluid::node::velocity.in(store_);
   const size_t nf = ft.size();
   parallel_for(nf, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_mean_vectors(fluid_u, fluid_tets, pairs_.fluid_velocity, b, e);
@@ -415,8 +412,8 @@ void FluidToSolidSystem::exchange(bool initial) {
   args.pairs = list;
   args.pair_volume = {pairs_.volume.data(), np};
   args.fluid_velocity = pairs_.fluid_velocity;
-  args.fluid_velocity_old = ft.span<double>("velocity_before");
-  args.target = ft.span<double>("solid_velocity");
+  args.fluid_velocity_old = coupling::cell::velocity_before.in(ft);
+  args.target = coupling::cell::solid_velocity.in(ft);
   args.pair_weight = pairs_.pair_weight;
   args.penalty = {pairs_.penalty.data(), 3 * np};
   args.force = {pairs_.force.data(), 3 * np};
@@ -441,8 +438,8 @@ void FluidToSolidSystem::exchange(bool initial) {
       penalty[d] += args.penalty[3 * p + d];
       scale += std::abs(args.penalty[3 * p + d]);
     }
-  const auto sigma = ft.span<double>("absorption");
-  const auto target = ft.span<double>("solid_velocity");
+  const auto sigma = coupling::cell::absorption.in(ft);
+  const auto target = coupling::cell::solid_velocity.in(ft);
   for (size_t k = 0; k < nf && !initial; ++k)
     if (sigma[k] != 0.0)
       for (int d = 0; d < 3; ++d)
@@ -542,10 +539,9 @@ void FluidToSolidSystem::sample_wetted_faces() {
   }
   kernels::coupling_broad_phase({pts, pts, pairs_.fluid_lo, pairs_.fluid_hi, 0.0}, pairs_.wet_broad);
   const Table& ft = store_.table(fluid::tet_table);
-  pairs_.wet_outside = kernels::interpolate_p1_at_points(
-      store_.table(fluid::node_table).span<double>("x"), ft.span<int32_t>("nodes"),
-      store_.table(fluid::node_table).span<double>("pressure"), pts, pairs_.wet_broad.pairs,
-      pairs_.wet_pressure);
+  pairs_.wet_outside = kernels::interpolate_p1_at_points(fluid::node::x.in(store_), fluid::tet::nodes.in(ft),
+                                                         fluid::node::pressure.in(store_), pts,
+                                                         pairs_.wet_broad.pairs, pairs_.wet_pressure);
   auto p = faces.span<double>("fluid_pressure");
   for (size_t k = 0; k < pairs_.wet_faces.size(); ++k)
     p[static_cast<size_t>(pairs_.wet_faces[k])] = pairs_.wet_pressure[k];
@@ -555,9 +551,8 @@ void FluidToSolidSystem::sample_wetted_faces() {
 // the sink of this window's fluid step used (SolidToFluidSystem::network_sink, on the same mesh).
 void FluidToSolidSystem::sample_network_inlet() {
   const Table& nodes = store_.table(fluid::node_table);
-  pairs_.inlet_pressure = inlet_pressure(settings_, nodes.span<double>("x"),
-                                         store_.table(fluid::tet_table).span<int32_t>("nodes"),
-                                         nodes.span<double>("pressure"), pairs_);
+  pairs_.inlet_pressure = inlet_pressure(settings_, fluid::node::x.in(nodes), fluid::tet::nodes.in(store_),
+                                         fluid::node::pressure.in(nodes), pairs_);
   store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0] = pairs_.inlet_pressure;
 }
 

@@ -236,10 +236,10 @@ void FluidSolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vect
     if (g.name == "fluid" && wants_field(fields, "solid_fraction")) {
       const Table& ft = store_.table(fluid::tet_table);
       g.fields.push_back({"solid_fraction", Center::cell, 1, ElementType::f64,
-                          ft.span<double>("solid_fraction").data(), ft.size()});
+                          coupling::cell::solid_fraction.in(ft).data(), ft.size()});
       if (settings_.network_inlet)  // which cells hold the network's fluid, not the surrounding fluid's
         g.fields.push_back({"network_cell", Center::cell, 1, ElementType::f64,
-                            ft.span<double>("network_cell").data(), ft.size()});
+                            coupling::cell::network_cell.in(ft).data(), ft.size()});
     }
     if (g.name == "solid" && wants_field(fields, "fluid_force")) {
       const Table& nodes = store_.table(solid::node_table);
@@ -267,10 +267,10 @@ void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>
   // fluid's, without the fictitious fluid inside the solid, nor the cells the cracks' network owns (their
   // fluid is the network's, its pressure the network's vertices').
   const Table& ft = store_.table(fluid::tet_table);
-  const auto fraction = ft.span<double>("solid_fraction");
-  const auto owned = settings_.network_inlet ? ft.span<double>("network_cell") : std::span<double>{};
-  const auto tets = ft.span<int32_t>("nodes");
-  const auto p = store_.table(fluid::node_table).span<double>("pressure");
+  const auto fraction = coupling::cell::solid_fraction.in(ft);
+  const auto owned = settings_.network_inlet ? coupling::cell::network_cell.in(ft) : std::span<double>{};
+  const auto tets = fluid::tet::nodes.in(ft);
+  const auto p = fluid::node::pressure.in(store_);
   double pmin = 0.0, pmax = 0.0;
   bool any = false;
   for (size_t k = 0; k < fraction.size(); ++k) {

@@ -18,8 +18,24 @@
 //            (added-mass instability); concurrent only: older_change (3, the change two fluid steps back)
 //            and fluid_ahead (u8, 1: the stored fluid state is already the window's end, a checkpoint having
 //            joined its step)
+#include "engine/core/column_ref.hpp"
+#include "systems/fluid/fluid_tables.hpp"
+
 namespace rift::coupling {
 
 inline constexpr const char* state_table = "fluid_solid";
+
+// The coupling's columns of fluid_tet; solid_dilatation with fluid_solid.dilatation (the solid's rate of
+// volume change per unit volume of K [1/s]), network_cell with fluid_solid.network_inlet (1: the cracks'
+// network owns the cell's fluid).
+namespace cell {
+inline constexpr ColumnRef<double> solid_volume{fluid::tet_table, "solid_volume"};
+inline constexpr ColumnRef<double> solid_fraction{fluid::tet_table, "solid_fraction"};
+inline constexpr ColumnRef<double, 3> solid_velocity{fluid::tet_table, "solid_velocity"};
+inline constexpr ColumnRef<double> absorption{fluid::tet_table, "absorption"};
+inline constexpr ColumnRef<double> solid_dilatation{fluid::tet_table, "solid_dilatation"};
+inline constexpr ColumnRef<double, 3> velocity_before{fluid::tet_table, "velocity_before"};
+inline constexpr ColumnRef<double> network_cell{fluid::tet_table, "network_cell"};
+}  // namespace cell
 
 }  // namespace rift::coupling

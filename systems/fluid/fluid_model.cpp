@@ -115,14 +115,14 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
     : store_(store), spec_(spec), substeps_(substeps), surface_names_(mesh.surface_names) {
   build_solver(mesh);
   Table& nodes = store_.add_table(fluid::node_table);
-  nodes.add<double>("x", 3);
-  nodes.add<double>("velocity", 3);
-  nodes.add<double>("pressure", 1);
-  nodes.add<double>("previous_velocity", 3);
+  fluid::node::x.create(nodes);
+  fluid::node::velocity.create(nodes);
+  fluid::node::pressure.create(nodes);
+  fluid::node::previous_velocity.create(nodes);
   Table& tets = store_.add_table(fluid::tet_table);
-  tets.add<int32_t>("nodes", 4).indexes(IndexTarget::rows_of(fluid::node_table));
-  tets.add<double>("pressure_matrix_coefficient", 1);
-  tets.add<double>("pressure_subscale", 3);
+  fluid::tet::nodes.create(tets).indexes(IndexTarget::rows_of(fluid::node_table));
+  fluid::tet::pressure_matrix_coefficient.create(tets);
+  fluid::tet::pressure_subscale.create(tets);
   if (spec.adapt) {
     Table& faces = store_.add_table(fluid::boundary_table);
     faces.add<int32_t>("nodes", 3).indexes(IndexTarget::rows_of(fluid::node_table));
@@ -162,11 +162,10 @@ void FluidModel::build_solver(const TetMesh& mesh) {
 }
 
 void FluidModel::use_store_state() {
-  Table& nodes = store_.table(fluid::node_table);
-  Table& tets = store_.table(fluid::tet_table);
-  solver_->use_state({&nodes.column("velocity"), &nodes.column("previous_velocity"),
-                      &nodes.column("pressure"), &tets.column("pressure_matrix_coefficient"),
-                      &tets.column("pressure_subscale"),
+  solver_->use_state({&fluid::node::velocity.column(store_), &fluid::node::previous_velocity.column(store_),
+                      &fluid::node::pressure.column(store_),
+                      &fluid::tet::pressure_matrix_coefficient.column(store_),
+                      &fluid::tet::pressure_subscale.column(store_),
                       &store_.table(fluid::step_table).column("has_previous")});
 }
 
@@ -175,7 +174,7 @@ FluidModel::~FluidModel() = default;
 // Outputs and metrics read the fluid's committed state: with the concurrent coupling a step may be in
 // flight in a task while the run loop writes them.
 void FluidModel::cell_fields() {
-  const auto u = store_.table(fluid::node_table).span<double>("velocity");
+  const auto u = fluid::node::velocity.in(store_);
   const auto conn = solver_->tets();
   const auto grad = solver_->gradients();
   const auto h = solver_->element_sizes();
@@ -196,7 +195,7 @@ void FluidModel::cell_fields() {
 }
 
 double FluidModel::kinetic_energy() const {
-  const auto u = store_.table(fluid::node_table).span<double>("velocity");
+  const auto u = fluid::node::velocity.in(store_);
   double e = 0.0;
   const auto node_volume = solver_->node_volumes();
   for (size_t n = 0; n < node_volume.size(); ++n)
@@ -269,19 +268,19 @@ void FluidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
   const Table& tets = store_.table(fluid::tet_table);
   XdmfGrid g{"fluid",
              Topology::tetrahedron,
-             nodes.span<double>("x").data(),
+             fluid::node::x.in(nodes).data(),
              nodes.size(),
-             tets.span<int32_t>("nodes").data(),
+             fluid::tet::nodes.in(tets).data(),
              tets.size(),
              static_cast<uint64_t>(mesh_revision()),
              false,
              {}};
   if (wants_field(fields, "velocity"))
-    g.fields.push_back(
-        {"velocity", Center::node, 3, ElementType::f64, nodes.span<double>("velocity").data(), nodes.size()});
+    g.fields.push_back({"velocity", Center::node, 3, ElementType::f64, fluid::node::velocity.in(nodes).data(),
+                        nodes.size()});
   if (wants_field(fields, "pressure"))
-    g.fields.push_back(
-        {"pressure", Center::node, 1, ElementType::f64, nodes.span<double>("pressure").data(), nodes.size()});
+    g.fields.push_back({"pressure", Center::node, 1, ElementType::f64, fluid::node::pressure.in(nodes).data(),
+                        nodes.size()});
   if (wants_field(fields, "divergence"))
     g.fields.push_back({"divergence", Center::cell, 1, ElementType::f64, divergence_.data(), tets.size()});
   if (wants_field(fields, "cfl"))
@@ -302,13 +301,13 @@ void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& ro
   row.emplace_back("fluid_divergence_max", v("divergence_max"));
   row.emplace_back("fluid_cfl", v("cfl"));
   row.emplace_back("fluid_kinetic_energy", kinetic_energy());
-  const auto u = store_.table(fluid::node_table).span<double>("velocity");
+  const auto u = fluid::node::velocity.in(store_);
   double speed2 = 0.0;
   for (size_t n = 0; n < u.size() / 3; ++n)
     speed2 =
         std::max(speed2, u[3 * n] * u[3 * n] + u[3 * n + 1] * u[3 * n + 1] + u[3 * n + 2] * u[3 * n + 2]);
   row.emplace_back("fluid_max_speed", std::sqrt(speed2));
-  const auto p = store_.table(fluid::node_table).span<double>("pressure");
+  const auto p = fluid::node::pressure.in(store_);
   double pmin = p.empty() ? 0.0 : p[0], pmax = pmin;
   for (double q : p) {
     pmin = std::min(pmin, q);

@@ -57,8 +57,8 @@ void FluidModel::store_mesh(const TetMesh& mesh) {
   tets.resize(0);
   tets.resize(nt);
   const auto x = flat_nodes(mesh);
-  std::copy(x.begin(), x.end(), nodes.span<double>("x").begin());
-  auto conn = tets.span<int32_t>("nodes");
+  std::copy(x.begin(), x.end(), fluid::node::x.in(nodes).begin());
+  auto conn = fluid::tet::nodes.in(tets);
   for (size_t t = 0; t < nt; ++t) std::copy(mesh.tets[t].begin(), mesh.tets[t].end(), &conn[4 * t]);
   if (spec_.adapt) {
     Table& faces = store_.table(fluid::boundary_table);
@@ -78,8 +78,8 @@ TetMesh FluidModel::mesh_from_store() const {
   const Table& nodes = store_.table(fluid::node_table);
   const Table& tets = store_.table(fluid::tet_table);
   const Table& faces = store_.table(fluid::boundary_table);
-  const auto x = nodes.span<const double>("x");
-  const auto conn = tets.span<const int32_t>("nodes");
+  const auto x = fluid::node::x.in(nodes);
+  const auto conn = fluid::tet::nodes.in(tets);
   const auto fn = faces.span<const int32_t>("nodes");
   const auto fs = faces.span<const int32_t>("surface");
   mesh.nodes.resize(nodes.size());
@@ -103,9 +103,8 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   // The old mesh and state, from the store (what the last step committed).
   const Table& nodes = store_.table(fluid::node_table);
   const Table& tets = store_.table(fluid::tet_table);
-  const std::vector<double> old_x(nodes.span<const double>("x").begin(), nodes.span<const double>("x").end());
-  const std::vector<int32_t> old_tets(tets.span<const int32_t>("nodes").begin(),
-                                      tets.span<const int32_t>("nodes").end());
+  const std::vector<double> old_x(fluid::node::x.in(nodes).begin(), fluid::node::x.in(nodes).end());
+  const std::vector<int32_t> old_tets(fluid::tet::nodes.in(tets).begin(), fluid::tet::nodes.in(tets).end());
   const bool previous = store_.table(fluid::step_table).span<const uint8_t>("has_previous")[0] != 0;
   // Candidate old tets of each new node: zero-size boxes against the old tets' boxes.
   const std::vector<double> points = flat_nodes(mesh);
@@ -124,11 +123,11 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   }
   kernels::CouplingBroadPhaseWorkspace ws;
   kernels::coupling_broad_phase({points, points, lo, hi, 1e-9 * span}, ws);
-  const auto u = interpolate(old_x, old_tets, nodes.span<const double>("velocity"), 3, points, ws.pairs);
-  const auto p = interpolate(old_x, old_tets, nodes.span<const double>("pressure"), 1, points, ws.pairs);
-  const auto u_old = previous ? interpolate(old_x, old_tets, nodes.span<const double>("previous_velocity"), 3,
-                                            points, ws.pairs)
-                              : std::vector<double>{};
+  const auto u = interpolate(old_x, old_tets, fluid::node::velocity.in(nodes), 3, points, ws.pairs);
+  const auto p = interpolate(old_x, old_tets, fluid::node::pressure.in(nodes), 1, points, ws.pairs);
+  const auto u_old =
+      previous ? interpolate(old_x, old_tets, fluid::node::previous_velocity.in(nodes), 3, points, ws.pairs)
+               : std::vector<double>{};
 
   build_solver(mesh);
   store_mesh(mesh);
@@ -137,14 +136,13 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   // nodes); its pressure preconditioner is assembled at that step (coefficients 0: not assembled yet), and
   // the pressure subscale starts from zero on the new cells.
   Table& out = store_.table(fluid::node_table);
-  std::copy(u.begin(), u.end(), out.span<double>("velocity").begin());
-  std::copy(p.begin(), p.end(), out.span<double>("pressure").begin());
-  if (previous) std::copy(u_old.begin(), u_old.end(), out.span<double>("previous_velocity").begin());
+  std::copy(u.begin(), u.end(), fluid::node::velocity.in(out).begin());
+  std::copy(p.begin(), p.end(), fluid::node::pressure.in(out).begin());
+  if (previous) std::copy(u_old.begin(), u_old.end(), fluid::node::previous_velocity.in(out).begin());
   Table& cells = store_.table(fluid::tet_table);
-  for (const char* c : {"pressure_matrix_coefficient", "pressure_subscale"}) {
-    const auto values = cells.span<double>(c);
+  for (const auto values :
+       {fluid::tet::pressure_matrix_coefficient.in(cells), fluid::tet::pressure_subscale.in(cells)})
     std::fill(values.begin(), values.end(), 0.0);
-  }
   solver_->restored(time);
   store_.table(fluid::step_table).span<int64_t>("remeshes")[0] += 1;
 }

@@ -10,10 +10,8 @@ namespace rift {
 Access FluidStepSystem::access() const {
   using fluid::col;
   Access a;
-  a.writes = {col(fluid::node_table, "velocity"), col(fluid::node_table, "pressure"),
-              col(fluid::node_table, "previous_velocity"),
-              col(fluid::tet_table, "pressure_matrix_coefficient"),
-              col(fluid::tet_table, "pressure_subscale")};
+  a.writes = {fluid::node::velocity.key(), fluid::node::pressure.key(), fluid::node::previous_velocity.key(),
+              fluid::tet::pressure_matrix_coefficient.key(), fluid::tet::pressure_subscale.key()};
   for (const auto& columns :
        {std::span<const char* const>(fluid::step_counts), std::span<const char* const>(fluid::step_flags),
         std::span<const char* const>(fluid::step_measures)})

@@ -15,7 +15,10 @@
 //            times it was remade)
 // fluid_boundary (fluid.adapt only): nodes (i32 x3), surface (i32, index into the mesh's surface names):
 //            the boundary triangles, so a restart rebuilds the solver on the mesh the store holds
+#include <cstdint>
 #include <string>
+
+#include "engine/core/column_ref.hpp"
 
 namespace rift::fluid {
 
@@ -23,6 +26,20 @@ inline constexpr const char* node_table = "fluid_node";
 inline constexpr const char* tet_table = "fluid_tet";
 inline constexpr const char* step_table = "fluid_step";
 inline constexpr const char* boundary_table = "fluid_boundary";
+
+// The fluid's own columns of fluid_node and fluid_tet (the coupling's are in
+// systems/coupling/fluid_solid_tables.hpp).
+namespace node {
+inline constexpr ColumnRef<double, 3> x{node_table, "x"};
+inline constexpr ColumnRef<double, 3> velocity{node_table, "velocity"};
+inline constexpr ColumnRef<double> pressure{node_table, "pressure"};
+inline constexpr ColumnRef<double, 3> previous_velocity{node_table, "previous_velocity"};
+}  // namespace node
+namespace tet {
+inline constexpr ColumnRef<int32_t, 4> nodes{tet_table, "nodes"};
+inline constexpr ColumnRef<double> pressure_matrix_coefficient{tet_table, "pressure_matrix_coefficient"};
+inline constexpr ColumnRef<double, 3> pressure_subscale{tet_table, "pressure_subscale"};
+}  // namespace tet
 
 // fluid_step's columns by type (the fluid step writes them all).
 inline constexpr const char* step_counts[] = {"picard_iterations", "velocity_iterations",

@@ -134,15 +134,11 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   use_store_state();
   // The fresh solver takes the carried-over state (the next step imposes the boundary values on Dirichlet
   // nodes); its pressure preconditioner is assembled at that step (coefficients 0: not assembled yet), and
-  // the pressure subscale starts from zero on the new cells.
+  // the pressure subscale starts from zero on the new cells (store_mesh's fresh rows are zero).
   Table& out = store_.table(fluid::node_table);
   std::copy(u.begin(), u.end(), fluid::node::velocity.in(out).begin());
   std::copy(p.begin(), p.end(), fluid::node::pressure.in(out).begin());
   if (previous) std::copy(u_old.begin(), u_old.end(), fluid::node::previous_velocity.in(out).begin());
-  Table& cells = store_.table(fluid::tet_table);
-  for (const auto values :
-       {fluid::tet::pressure_matrix_coefficient.in(cells), fluid::tet::pressure_subscale.in(cells)})
-    std::fill(values.begin(), values.end(), 0.0);
   solver_->restored(time);
   store_.table(fluid::step_table).span<int64_t>("remeshes")[0] += 1;
 }

@@ -131,10 +131,8 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
 
   own_state_ = std::make_unique<OwnState>(nn, nt);
   columns_ = own_state_->columns();
-  next_velocity_ = std::make_unique<Column>("fluid_solver", "next_velocity", ElementType::f64, 3);
-  next_pressure_ = std::make_unique<Column>("fluid_solver", "next_pressure", ElementType::f64, 1);
-  next_velocity_->resize(nn);
-  next_pressure_->resize(nn);
+  next_velocity_.resize(nn);
+  next_pressure_.resize(nn);
   for (auto* v : {&u_star_, &u_iter_, &xi_, &w_, &eta_, &body_force_, &vel_value_, &rhs_})
     v->assign(3 * nn, 0.0);
   for (auto* v : {&visc_diag_, &p_iter_, &rhs_c_, &x_c_, &prhs_, &cont_res_, &phi_}) v->assign(nn, 0.0);
@@ -172,8 +170,8 @@ FluidSolver::FluidSolver(const TetMesh& mesh, FluidSettings settings, std::vecto
 }
 
 FluidSolver::~FluidSolver() = default;
-// The input spans move with the vectors they view (a vector's move keeps its buffer), and the state's
-// columns with the heap objects that hold them.
+// The input spans move with the vectors they view and the spares' buffers with their columns (a move keeps
+// the buffer), and the state's columns with the heap object that holds them.
 FluidSolver::FluidSolver(FluidSolver&&) noexcept = default;
 FluidSolver& FluidSolver::operator=(FluidSolver&&) noexcept = default;
 
@@ -437,8 +435,8 @@ FluidStepReport FluidSolver::advance() {
   // The iterates live in the spares; u^n and p^n stay as committed.
   u_old_ = state(columns_.velocity);
   const std::span<const double> p_n = state(columns_.pressure);
-  u_ = next_velocity_->values<double>();
-  p_ = next_pressure_->values<double>();
+  u_ = next_velocity_.values<double>();
+  p_ = next_pressure_.values<double>();
   const std::span<double> pcoef_matrix = state(columns_.pressure_matrix_coefficient);
   const std::span<double> subscale = state(columns_.pressure_subscale);
   apply_velocity_bc(t_new);
@@ -631,8 +629,8 @@ FluidStepReport FluidSolver::advance() {
 
 void FluidSolver::commit() {
   columns_.previous_velocity->swap_values(*columns_.velocity);  // u^{n-1} <- u^n
-  columns_.velocity->swap_values(*next_velocity_);              // u^n <- u^{n+1}; the spare: old u^{n-1}
-  columns_.pressure->swap_values(*next_pressure_);
+  columns_.velocity->swap_values(next_velocity_);               // u^n <- u^{n+1}; the spare: old u^{n-1}
+  columns_.pressure->swap_values(next_pressure_);
   columns_.has_previous->values<uint8_t>()[0] = 1;
 }
 

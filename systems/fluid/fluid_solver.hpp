@@ -273,7 +273,8 @@ class FluidSolver {
   struct OwnState;
   std::unique_ptr<OwnState> own_state_;
   FluidStateColumns columns_;
-  std::unique_ptr<Column> next_velocity_, next_pressure_;
+  Column next_velocity_{"fluid_solver", "next_velocity", ElementType::f64, 3};
+  Column next_pressure_{"fluid_solver", "next_pressure", ElementType::f64, 1};
   // Fields of a step: u_ and p_ the iterates (the spares' values), u_old_ the step's u^n.
   std::span<double> u_, p_;
   std::span<const double> u_old_;

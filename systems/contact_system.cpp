@@ -56,17 +56,19 @@ ContactSystem::ContactSystem(Store& store, const ContactSpec& spec, size_t input
   if (!spec.penalty) tet_penalty_ = std::move(tet_penalty);
   Table& nodes = store_.table(solid::node_table);
   nodes.add<double>(node_force_column(NodeForceSource::contact), 3);
-  nodes.add<double>("x_detect", 3);
-  if (store_.has(solid::joint_table)) store_.table(solid::joint_table).add<uint8_t>("in_contact");
+  solid::node::x_detect.create(nodes);
+  if (store_.has(solid::joint_table)) solid::joint::in_contact.create(store_);
   Table& pairs = store_.add_table(solid::contact_pair_table);
-  pairs.add<int32_t>("tets", 2).indexes(IndexTarget::rows_of(solid::tet_table));
-  pairs.add<double>("history", 3);
-  pairs.add<double>("force", 24);
-  for (const char* c : {"friction_dissipation", "damping_dissipation"}) pairs.add<double>(c);
+  solid::contact_pair::tets.create(pairs).indexes(IndexTarget::rows_of(solid::tet_table));
+  solid::contact_pair::history.create(pairs);
+  solid::contact_pair::force.create(pairs);
+  solid::contact_pair::friction_dissipation.create(pairs);
+  solid::contact_pair::damping_dissipation.create(pairs);
   Table& energy = store_.table(solid::energy_table);
-  for (const char* c : {"contact_work", "friction", "contact_damping"}) energy.add<double>(c);
+  for (const auto& c : {solid::energy::contact_work, solid::energy::friction, solid::energy::contact_damping})
+    c.create(energy);
   Table& state = store_.add_table(solid::contact_state_table);
-  state.add<int64_t>("detections");
+  solid::contact_state::detections.create(state);
   state.resize(1);
   is_candidate_.assign(store_.table(solid::tet_table).size(), 0);
   derive_constants(spec, tet_density);
@@ -83,8 +85,8 @@ ContactSystem::~ContactSystem() = default;
 
 void ContactSystem::derive_constants(const ContactSpec& spec, std::span<const double> tet_density) {
   const Table& tets = store_.table(solid::tet_table);
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
-  const auto conn = tets.span<const int32_t>("nodes");
+  const auto x0 = solid::node::x0.read(store_);
+  const auto conn = solid::tet::nodes.read(tets);
   double sum_v = 0.0, sum_a = 0.0, sum_l = 0.0, sum_m = 0.0;
   for (size_t t = 0; t < tets.size(); ++t) {
     Corners c;
@@ -121,8 +123,8 @@ void ContactSystem::derive_constants(const ContactSpec& spec, std::span<const do
 // Bodies: components of the input vertices through the tets. Outer boundary faces: faces (on input
 // vertices) that only one tet has. Only a mesh of several bodies needs the faces.
 void ContactSystem::find_bodies_and_boundary_tets() {
-  const auto vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto vertex = solid::node::vertex.read(store_);
+  const auto conn = solid::tet::nodes.read(store_);
   const size_t tets = conn.size() / 4;
   std::vector<int32_t> parent(input_vertex_count_);
   std::iota(parent.begin(), parent.end(), 0);
@@ -146,7 +148,7 @@ void ContactSystem::find_bodies_and_boundary_tets() {
   for (size_t t = 0; t < tets; ++t) tet_body_[t] = find_root(parent, vertex[conn[4 * t]]);
   in_zone_.assign(tets, 0);
   if (store_.has(solid::joint_table))
-    for (int32_t t : store_.table(solid::joint_table).span<const int32_t>("tets")) in_zone_[t] = 1;
+    for (int32_t t : solid::joint::tets.read(store_)) in_zone_[t] = 1;
   if (bodies_ < 2) return;
   std::unordered_map<FaceKey, int32_t, FaceKeyHash> count;
   count.reserve(2 * tets);
@@ -173,8 +175,8 @@ void ContactSystem::find_bodies_and_boundary_tets() {
 // omega^2 <= 2 K / m, and the central difference is stable for dt <= 2 / omega = sqrt(2 m / K).
 void ContactSystem::node_stiffness(std::vector<double>& joint, std::vector<double>& outer) const {
   const Table& nodes = store_.table(solid::node_table);
-  const auto x0 = nodes.span<const double>("x0");
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto x0 = solid::node::x0.read(nodes);
+  const auto conn = solid::tet::nodes.read(store_);
   outer.assign(nodes.size(), 0.0);
   joint.assign(nodes.size(), 0.0);
   auto add_face = [&](std::vector<double>& stiffness, int32_t t, const int32_t corner[3]) {
@@ -190,8 +192,8 @@ void ContactSystem::node_stiffness(std::vector<double>& joint, std::vector<doubl
   for (const auto& [t, f] : boundary_faces_) add_face(outer, t, kTetFaceCorners[f]);
   if (!store_.has(solid::joint_table)) return;
   const Table& joints = store_.table(solid::joint_table);
-  const auto jn = joints.span<const int32_t>("nodes");
-  const auto jt = joints.span<const int32_t>("tets");
+  const auto jn = solid::joint::nodes.read(joints);
+  const auto jt = solid::joint::tets.read(joints);
   for (size_t j = 0; j < joints.size(); ++j)
     for (int s = 0; s < 2; ++s) {
       const int32_t t = jt[2 * j + s];
@@ -204,7 +206,7 @@ void ContactSystem::node_stiffness(std::vector<double>& joint, std::vector<doubl
 }
 
 void ContactSystem::estimate_stable_step() {
-  const auto mass = store_.table(solid::node_table).span<const double>("mass");
+  const auto mass = solid::node::mass.read(store_);
   std::vector<double> outer, joint;
   node_stiffness(joint, outer);
   auto step = [&](double k, size_t n) {
@@ -225,12 +227,12 @@ double ContactSystem::damped_step(double dt) const {
 }
 
 std::vector<double> matched_contact_penalties(const Store& store, std::span<const double> joint_penalty) {
-  const auto x0 = store.table(solid::node_table).span<const double>("x0");
-  const auto conn = store.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto x0 = solid::node::x0.read(store);
+  const auto conn = solid::tet::nodes.read(store);
   const Table& joints = store.table(solid::joint_table);
-  const auto jn = joints.span<const int32_t>("nodes");
-  const auto jt = joints.span<const int32_t>("tets");
-  const auto material = joints.span<const int32_t>("material");
+  const auto jn = solid::joint::nodes.read(joints);
+  const auto jt = solid::joint::tets.read(joints);
+  const auto material = solid::joint::material.read(joints);
   std::vector<double> penalty(conn.size() / 4, INFINITY);
   for (size_t j = 0; j < joints.size(); ++j) {
     const double* p[3] = {&x0[3 * jn[6 * j]], &x0[3 * jn[6 * j + 1]], &x0[3 * jn[6 * j + 2]]};
@@ -266,29 +268,26 @@ Access ContactSystem::access() const {
   using solid::col;
   const char* N = solid::node_table;
   const char* P = solid::contact_pair_table;
-  std::vector<std::string> reads{col(N, "x"),
-                                 col(N, "v"),
-                                 col(N, "vertex"),
-                                 col(solid::tet_table, "nodes"),
-                                 col(solid::event_table, "joint"),
-                                 col(solid::event_table, "time")};
+  std::vector<std::string> reads{solid::node::x.key(),      solid::node::v.key(),
+                                 solid::node::vertex.key(), solid::tet::nodes.key(),
+                                 solid::event::joint.key(), solid::event::time.key()};
   if (store_.has(solid::joint_table)) {
-    reads.push_back(col(solid::joint_table, "nodes"));
-    reads.push_back(col(solid::joint_table, "tets"));
-    reads.push_back(col(solid::joint_table, "d_max"));
+    reads.push_back(solid::joint::nodes.key());
+    reads.push_back(solid::joint::tets.key());
+    reads.push_back(solid::joint::d_max.key());
   }
-  if (store_.has(solid::joint_state_table)) reads.push_back(col(solid::joint_state_table, "damage_onsets"));
+  if (store_.has(solid::joint_state_table)) reads.push_back(solid::joint_state::damage_onsets.key());
   std::vector<std::string> writes{col(N, node_force_column(NodeForceSource::contact)),
-                                  col(N, "x_detect"),
-                                  col(P, "tets"),
-                                  col(P, "history"),
-                                  col(P, "force"),
-                                  col(P, "friction_dissipation"),
-                                  col(P, "damping_dissipation"),
-                                  col(solid::energy_table, "friction"),
-                                  col(solid::energy_table, "contact_damping"),
-                                  col(solid::contact_state_table, "detections")};
-  if (store_.has(solid::joint_table)) writes.push_back(col(solid::joint_table, "in_contact"));
+                                  solid::node::x_detect.key(),
+                                  solid::contact_pair::tets.key(),
+                                  solid::contact_pair::history.key(),
+                                  solid::contact_pair::force.key(),
+                                  solid::contact_pair::friction_dissipation.key(),
+                                  solid::contact_pair::damping_dissipation.key(),
+                                  solid::energy::friction.key(),
+                                  solid::energy::contact_damping.key(),
+                                  solid::contact_state::detections.key()};
+  if (store_.has(solid::joint_table)) writes.push_back(solid::joint::in_contact.key());
   // Resizes only its own pair table, which no other system touches: a declared resize, not a topology change
   // (that would serialise the whole step).
   return {reads, writes, {P}};
@@ -300,15 +299,14 @@ void ContactSystem::run(const StepContext& ctx) {
     // A restored run (detections already made) replays the log to rebuild candidates and grouping only:
     // its pair list and detection positions came with the checkpoint, so detecting now would change the
     // pair table (not the physics) and the state would no longer be the straight run's bit for bit.
-    const bool restored =
-        !awake_ && store_.table(solid::contact_state_table).span<const int64_t>("detections")[0] > 0;
+    const bool restored = !awake_ && solid::contact_state::detections.read(store_)[0] > 0;
     must_detect_ = (add_new_candidates() && !restored) || must_detect_;
   }
   // Damage begins at a few points on few steps: the joints are scanned only after some did (142 scans in
   // the 55,556 steps of the coarse wedge's flow sibling to 0.5 ms, 265 in hydraulic_fracture.yaml's
   // 30,286). A restored run scans once, finding nothing its checkpoint did not already hold.
   if (awake_ && store_.has(solid::joint_state_table)) {
-    const int64_t onsets = store_.table(solid::joint_state_table).span<const int64_t>("damage_onsets")[0];
+    const int64_t onsets = solid::joint_state::damage_onsets.read(store_)[0];
     if (onsets > onsets_seen_) {
       onsets_seen_ = onsets;
       must_detect_ = add_damaged_joints() || must_detect_;
@@ -329,19 +327,19 @@ bool ContactSystem::add_new_candidates() {
     awake_ = true;
     SolidTopology topology;
     topology.input_vertex_count = input_vertex_count_;
-    topology.node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
-    topology.tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+    topology.node_vertex = solid::node::vertex.read(store_);
+    topology.tet_nodes = solid::tet::nodes.read(store_);
     if (store_.has(solid::joint_table)) {
-      topology.joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-      topology.joint_tets = store_.table(solid::joint_table).span<const int32_t>("tets");
+      topology.joint_nodes = solid::joint::nodes.read(store_);
+      topology.joint_tets = solid::joint::tets.read(store_);
     }
     grouping_ = std::make_unique<MeshConversion>(topology);
     if (bodies_ > 1)
       for (int32_t t : boundary_tets_) add_candidate(t);
   }
   const Table& events = store_.table(solid::event_table);
-  const auto joint = events.span<const int32_t>("joint");
-  const auto time = events.span<const double>("time");
+  const auto joint = solid::event::joint.read(events);
+  const auto time = solid::event::time.read(events);
   for (; events_seen_ < events.size(); ++events_seen_) {
     const int32_t j = joint[events_seen_];
     grouping_->break_joint(j, time[events_seen_]);
@@ -349,7 +347,7 @@ bool ContactSystem::add_new_candidates() {
   }
   // A restored run: the damaged joints whose tets took part before the checkpoint take part again.
   if (waking && store_.has(solid::joint_table)) {
-    const auto in_contact = store_.table(solid::joint_table).span<const uint8_t>("in_contact");
+    const auto in_contact = solid::joint::in_contact.read(store_);
     for (size_t j = 0; j < in_contact.size(); ++j)
       if (in_contact[j]) join_joint_pair(j);
   }
@@ -367,8 +365,8 @@ bool ContactSystem::add_damaged_joints() {
   Table& joints = store_.table(solid::joint_table);
   // d_max, the damage history of each integration point, is current on every step (the joint's `damage`
   // only on observed ones).
-  const auto d_max = joints.span<const double>("d_max");
-  const auto in_contact = joints.span<const uint8_t>("in_contact");
+  const auto d_max = solid::joint::d_max.read(joints);
+  const auto in_contact = solid::joint::in_contact.read(joints);
   const size_t points = joints.size() > 0 ? d_max.size() / joints.size() : 0;
   const size_t pairs_before = joined_pairs_.size();
   for (size_t j = 0; j < joints.size(); ++j)
@@ -391,8 +389,8 @@ void ContactSystem::add_candidate(int32_t tet) {
 
 void ContactSystem::join_joint_pair(size_t j) {
   Table& joints = store_.table(solid::joint_table);
-  const auto tets = joints.span<const int32_t>("tets");
-  joints.span<uint8_t>("in_contact")[j] = 1;
+  const auto tets = solid::joint::tets.read(joints);
+  solid::joint::in_contact.in(joints)[j] = 1;
   const int32_t a = tets[2 * j], b = tets[2 * j + 1];
   add_candidate(a);
   add_candidate(b);
@@ -409,9 +407,9 @@ void ContactSystem::merge_joined_pairs(size_t before) {
 }
 
 bool ContactSystem::detection_needed() {
-  const auto x = store_.table(solid::node_table).span<const double>("x");
-  const auto x_ref = store_.table(solid::node_table).span<const double>("x_detect");
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto x = solid::node::x.read(store_);
+  const auto x_ref = solid::node::x_detect.read(store_);
+  const auto conn = solid::tet::nodes.read(store_);
   const size_t n = candidates_.size();
   const size_t blocks = (n + kTetGrain - 1) / kTetGrain;
   auto& partial = partial_max_;
@@ -442,8 +440,8 @@ void run_chunks_in_parallel(size_t count, kernels::ChunkBody body, void* context
 
 void ContactSystem::detect() {
   Table& nodes = store_.table(solid::node_table);
-  const auto x = nodes.span<const double>("x");
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto x = solid::node::x.read(nodes);
+  const auto conn = solid::tet::nodes.read(store_);
   const size_t n = candidates_.size();
   if (lo_.size() < 3 * n) lo_.resize(3 * n), hi_.resize(3 * n);
   parallel_for(n, kTetGrain, [&](size_t begin, size_t end) {
@@ -472,24 +470,25 @@ void ContactSystem::detect() {
 
   Table& table = store_.table(solid::contact_pair_table);
   const size_t old_count = table.size();
-  const auto* old = reinterpret_cast<const kernels::ContactPair*>(table.span<int32_t>("tets").data());
+  const auto* old = reinterpret_cast<const kernels::ContactPair*>(solid::contact_pair::tets.in(table).data());
   old_pairs_.assign(old, old + old_count);
-  const auto old_history = table.span<double>("history");
+  const auto old_history = solid::contact_pair::history.in(table);
   old_history_.assign(old_history.begin(), old_history.end());
   // Nodes the old list gathered into are cleared here; compute_forces clears those of the new list.
   clear_gathered_nodes(old_pairs_);
   table.resize(found.size());
-  auto* pairs = reinterpret_cast<kernels::ContactPair*>(table.span<int32_t>("tets").data());
+  auto* pairs = reinterpret_cast<kernels::ContactPair*>(solid::contact_pair::tets.in(table).data());
   std::copy(found.begin(), found.end(), pairs);
-  kernels::remap_pair_history(old_pairs_, old_history_, {pairs, found.size()}, table.span<double>("history"));
-  std::copy(x.begin(), x.end(), nodes.span<double>("x_detect").begin());
-  ++store_.table(solid::contact_state_table).span<int64_t>("detections")[0];
+  kernels::remap_pair_history(old_pairs_, old_history_, {pairs, found.size()},
+                              solid::contact_pair::history.in(table));
+  std::copy(x.begin(), x.end(), solid::node::x_detect.in(nodes).begin());
+  ++solid::contact_state::detections.in(store_)[0];
   must_detect_ = false;
 }
 
 // Zeroes solid_node.contact_force at the corners of the pairs' tets: what a gather over them wrote.
 void ContactSystem::clear_gathered_nodes(std::span<const kernels::ContactPair> pairs) {
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto conn = solid::tet::nodes.read(store_);
   auto contact_force =
       store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::contact));
   for (const auto& p : pairs)
@@ -501,21 +500,22 @@ void ContactSystem::clear_gathered_nodes(std::span<const kernels::ContactPair> p
 void ContactSystem::compute_forces(const StepContext& ctx) {
   Table& nodes = store_.table(solid::node_table);
   Table& table = store_.table(solid::contact_pair_table);
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto conn = solid::tet::nodes.read(store_);
   const std::span<const kernels::ContactPair> pairs(
-      reinterpret_cast<const kernels::ContactPair*>(table.span<int32_t>("tets").data()), table.size());
+      reinterpret_cast<const kernels::ContactPair*>(solid::contact_pair::tets.in(table).data()),
+      table.size());
   kernels::ContactArgs args;
-  args.x = nodes.span<const double>("x");
-  args.v = nodes.span<const double>("v");
+  args.x = solid::node::x.read(nodes);
+  args.v = solid::node::v.read(nodes);
   args.tet_nodes = conn;
   args.pairs = pairs;
   args.law = law_;
   args.tet_penalty = tet_penalty_;
   args.dt = ctx.dt;
-  args.history = table.span<double>("history");
-  args.pair_force = table.span<double>("force");
-  args.friction_dissipation = table.span<double>("friction_dissipation");
-  args.damping_dissipation = table.span<double>("damping_dissipation");
+  args.history = solid::contact_pair::history.in(table);
+  args.pair_force = solid::contact_pair::force.in(table);
+  args.friction_dissipation = solid::contact_pair::friction_dissipation.in(table);
+  args.damping_dissipation = solid::contact_pair::damping_dissipation.in(table);
   const size_t blocks = (pairs.size() + kPairGrain - 1) / kPairGrain;
   if (partial_status_.size() < blocks) partial_status_.resize(blocks);
   parallel_for(pairs.size(), kPairGrain, [&](size_t begin, size_t end) {
@@ -533,8 +533,8 @@ void ContactSystem::compute_forces(const StepContext& ctx) {
     damping += args.damping_dissipation[k];
   }
   Table& energy = store_.table(solid::energy_table);
-  energy.span<double>("friction")[0] += friction;
-  energy.span<double>("contact_damping")[0] += damping;
+  solid::energy::friction.in(energy)[0] += friction;
+  solid::energy::contact_damping.in(energy)[0] += damping;
 }
 
 ContactTotals ContactSystem::totals() const {
@@ -544,7 +544,7 @@ ContactTotals ContactSystem::totals() const {
   t.pairs = table.size();
   t.touching = status_.touching;
   t.sliding = status_.sliding;
-  t.detections = store_.table(solid::contact_state_table).span<const int64_t>("detections")[0];
+  t.detections = solid::contact_state::detections.read(store_)[0];
   return t;
 }
 

@@ -22,47 +22,47 @@ JointForceSystem::JointForceSystem(Store& store, std::vector<kernels::JointMater
   blocks_.resize((joints + grain - 1) / grain);
   breaks_.resize(joints);
   Table& state = store_.add_table(solid::joint_state_table);
-  state.add<int64_t>("damage_onsets");
+  solid::joint_state::damage_onsets.create(state);
   state.resize(1);
 }
 
 Access JointForceSystem::access() const {
-  using solid::col;
-  const char* J = solid::joint_table;
-  const char* V = solid::event_table;
-  std::vector<std::string> writes{col(J, "corner_force"),  col(J, "d_max"), col(J, "broken"),
-                                  col(J, "opening"),       col(J, "slip"),  col(J, "damage"),
-                                  col(J, "stored_energy"), col(V, "step"),  col(V, "time"),
-                                  col(V, "joint"),         col(V, "mode"),  col(V, "centroid"),
-                                  col(V, "normal"),        col(V, "area"),  col(V, "released_energy")};
-  writes.push_back(col(solid::joint_state_table, "damage_onsets"));
-  if (store_.table(J).has("residual_anchor")) writes.push_back(col(J, "residual_anchor"));
-  return {{col(solid::node_table, "x"), col(J, "nodes"), col(J, "material"), col(J, "initial_offset")},
+  namespace joint = solid::joint;
+  namespace event = solid::event;
+  std::vector<std::string> writes{
+      joint::corner_force.key(), joint::d_max.key(),  joint::broken.key(),         joint::opening.key(),
+      joint::slip.key(),         joint::damage.key(), joint::stored_energy.key(),  event::step.key(),
+      event::time.key(),         event::joint.key(),  event::mode.key(),           event::centroid.key(),
+      event::normal.key(),       event::area.key(),   event::released_energy.key()};
+  writes.push_back(solid::joint_state::damage_onsets.key());
+  if (joint::residual_anchor.exists(store_)) writes.push_back(joint::residual_anchor.key());
+  return {{solid::node::x.key(), joint::nodes.key(), joint::material.key(), joint::initial_offset.key()},
           writes,
-          {V}};  // a break appends its row to the fracture log
+          {solid::event_table}};  // a break appends its row to the fracture log
 }
 
 void JointForceSystem::run(const StepContext& ctx) {
   Table& joints = store_.table(solid::joint_table);
   break_count_.store(0, std::memory_order_relaxed);
   kernels::JointArgs args;
-  args.x = store_.table(solid::node_table).span<double>("x");
-  args.joint_nodes = joints.span<int32_t>("nodes");
-  args.material = joints.span<int32_t>("material");
+  args.x = solid::node::x.in(store_);
+  args.joint_nodes = solid::joint::nodes.in(joints);
+  args.material = solid::joint::material.in(joints);
   args.materials = materials_;
   args.rule = rule_;
   args.softening = softening_;
-  args.d_max = joints.span<double>("d_max");
-  args.broken = joints.span<uint8_t>("broken");
-  args.corner_force = joints.span<double>("corner_force");
+  args.d_max = solid::joint::d_max.in(joints);
+  args.broken = solid::joint::broken.in(joints);
+  args.corner_force = solid::joint::corner_force.in(joints);
   if (ctx.observed) {  // only outputs, metrics and the energy checks read these (StepContext::observed)
-    args.opening = joints.span<double>("opening");
-    args.slip = joints.span<double>("slip");
-    args.damage = joints.span<double>("damage");
-    args.stored_energy = joints.span<double>("stored_energy");
+    args.opening = solid::joint::opening.in(joints);
+    args.slip = solid::joint::slip.in(joints);
+    args.damage = solid::joint::damage.in(joints);
+    args.stored_energy = solid::joint::stored_energy.in(joints);
   }
-  args.initial_offset = joints.span<double>("initial_offset");
-  if (joints.has("residual_anchor")) args.residual_anchor = joints.span<double>("residual_anchor");
+  args.initial_offset = solid::joint::initial_offset.in(joints);
+  if (solid::joint::residual_anchor.exists(store_))
+    args.residual_anchor = solid::joint::residual_anchor.in(joints);
   args.breaks = breaks_;
   args.break_count = &break_count_;
   parallel_for(joints.size(), grain, [&](size_t begin, size_t end) {
@@ -73,8 +73,7 @@ void JointForceSystem::run(const StepContext& ctx) {
   degenerate_ = total.degenerate;
   short_softening_ = total.short_softening;
   if (total.damage_onsets > 0)
-    store_.table(solid::joint_state_table).span<int64_t>("damage_onsets")[0] +=
-        static_cast<int64_t>(total.damage_onsets);
+    solid::joint_state::damage_onsets.in(store_)[0] += static_cast<int64_t>(total.damage_onsets);
   if (total.broke > 0) record_events(ctx, std::min(break_count_.load(), breaks_.size()));
 }
 
@@ -85,16 +84,16 @@ void JointForceSystem::record_events(const StepContext& ctx, size_t count) {
   Table& events = store_.table(solid::event_table);
   const size_t first = events.size();
   events.resize(first + count);
-  const auto x = store_.table(solid::node_table).span<const double>("x");
-  const auto nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-  auto step = events.span<int64_t>("step");
-  auto time = events.span<double>("time");
-  auto joint = events.span<int32_t>("joint");
-  auto mode = events.span<uint8_t>("mode");
-  auto centroid = events.span<double>("centroid");
-  auto normal = events.span<double>("normal");
-  auto area = events.span<double>("area");
-  auto released = events.span<double>("released_energy");
+  const auto x = solid::node::x.read(store_);
+  const auto nodes = solid::joint::nodes.read(store_);
+  auto step = solid::event::step.in(events);
+  auto time = solid::event::time.in(events);
+  auto joint = solid::event::joint.in(events);
+  auto mode = solid::event::mode.in(events);
+  auto centroid = solid::event::centroid.in(events);
+  auto normal = solid::event::normal.in(events);
+  auto area = solid::event::area.in(events);
+  auto released = solid::event::released_energy.in(events);
   for (size_t k = 0; k < count; ++k) {
     const size_t row = first + k;
     const int32_t j = breaks_[k].joint;

@@ -17,11 +17,11 @@ MeshConversionModel::MeshConversionModel(Store& store, const TetMesh& mesh,
       notch_triangles_.push_back(mesh.triangles[t]);
   SolidTopology topology;
   topology.input_vertex_count = mesh.nodes.size();
-  topology.node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
-  topology.tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  topology.node_vertex = solid::node::vertex.read(store_);
+  topology.tet_nodes = solid::tet::nodes.read(store_);
   if (store_.has(solid::joint_table)) {
-    topology.joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-    topology.joint_tets = store_.table(solid::joint_table).span<const int32_t>("tets");
+    topology.joint_nodes = solid::joint::nodes.read(store_);
+    topology.joint_tets = solid::joint::tets.read(store_);
   }
   topology.notch_triangles = notch_triangles_;
   conversion_ = std::make_unique<MeshConversion>(topology);
@@ -38,8 +38,8 @@ const MeshConversion& MeshConversionModel::conversion() {
 void MeshConversionModel::update_kinematics() {
   conversion();
   const Table& nodes = store_.table(solid::node_table);
-  conversion_->update_kinematics(nodes.span<const double>("x"), nodes.span<const double>("v"),
-                                 nodes.span<const double>("mass"));
+  conversion_->update_kinematics(solid::node::x.read(nodes), solid::node::v.read(nodes),
+                                 solid::node::mass.read(nodes));
 }
 
 void MeshConversionModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {

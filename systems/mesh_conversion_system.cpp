@@ -11,14 +11,13 @@ MeshConversionSystem::MeshConversionSystem(Store& store, MeshConversion& convers
     : store_(store), conversion_(conversion) {}
 
 Access MeshConversionSystem::access() const {
-  using solid::col;
-  return {{col(solid::event_table, "joint"), col(solid::event_table, "time")}, {conversion_key}};
+  return {{solid::event::joint.key(), solid::event::time.key()}, {conversion_key}};
 }
 
 void MeshConversionSystem::catch_up() {
   const Table& events = store_.table(solid::event_table);
-  const auto joint = events.span<const int32_t>("joint");
-  const auto time = events.span<const double>("time");
+  const auto joint = solid::event::joint.read(events);
+  const auto time = solid::event::time.read(events);
   for (; events_seen_ < events.size(); ++events_seen_)
     conversion_.break_joint(joint[events_seen_], time[events_seen_]);
 }

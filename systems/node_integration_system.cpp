@@ -48,7 +48,7 @@ Access NodeIntegrationSystem::access() const {
     const std::string work = col(E, kBookWork[static_cast<size_t>(e.book)]);
     if (std::find(writes.begin(), writes.end(), work) == writes.end()) writes.push_back(work);
   }
-  if (damped_) writes.push_back(col(E, "damping"));
+  if (damped_) writes.push_back(solid::energy::damping.key());
   if (fused_) {
     const Access tets = fused_->fused_access();
     reads.insert(reads.end(), tets.reads.begin(), tets.reads.end());
@@ -117,7 +117,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
     booked[b] = true;
     energy.span<double>(kBookWork[b])[0] += total.work[b];
   }
-  if (damped_) energy.span<double>("damping")[0] += total.damping;
+  if (damped_) solid::energy::damping.in(energy)[0] += total.damping;
 }
 
 void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
@@ -156,7 +156,7 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
 
 size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
   const Table& nodes = store_.table(solid::node_table);
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto conn = solid::tet::nodes.read(store_);
   const std::span<const int32_t> range = solid::node::slots.in(nodes);
   const std::span<const int32_t> slot = solid::slot.in(store_);
   const size_t tet_count = conn.size() / 4;
@@ -237,7 +237,7 @@ size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
 // side does not lie on one face of one such tet (not expected of a fracture zone's mesh).
 bool NodeIntegrationSystem::build_face_table(const std::vector<Piece>& runs) {
   const Table& nodes = store_.table(solid::node_table);
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto conn = solid::tet::nodes.read(store_);
   const size_t tet_count = conn.size() / 4;
   std::vector<int32_t> node_tet(nodes.size(), -1);
   for (const Piece& r : runs)
@@ -247,7 +247,7 @@ bool NodeIntegrationSystem::build_face_table(const std::vector<Piece>& runs) {
   face_corners_.assign(4 * tet_count, 0);
   loaded_.assign(tet_count, 0);
   if (store_.has(solid::joint_table)) {
-    const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
+    const auto joint_nodes = solid::joint::nodes.read(store_);
     for (size_t j = 0; j < joint_nodes.size() / 6; ++j)
       for (size_t side = 0; side < 2; ++side) {  // 0: A (takes the rows negated), 1: B
         const int32_t* n = &joint_nodes[6 * j + 3 * side];

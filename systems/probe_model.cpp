@@ -54,9 +54,7 @@ ProbeModel::ProbeModel(const Store& store, std::vector<ProbeSpec> probes) : stor
 }
 
 int64_t ProbeModel::fluid_mesh_revision() const {
-  if (!store_.has(fluid::step_table)) return 0;
-  const Table& step = store_.table(fluid::step_table);
-  return step.has("remeshes") ? step.span<const int64_t>("remeshes")[0] : 0;
+  return fluid::step::remeshes.exists(store_) ? fluid::step::remeshes.read(store_)[0] : 0;
 }
 
 void ProbeModel::locate(Gauge& g) const {

@@ -16,25 +16,25 @@ namespace rift {
 void SolidModel::scale_masses() {
   Table& nodes = store_.table(solid::node_table);
   const Table& tets = store_.table(solid::tet_table);
-  const auto x0 = nodes.span<const double>("x0");
-  auto mass = nodes.span<double>("mass");
-  auto inv_mass = nodes.span<double>("inv_mass");
+  const auto x0 = solid::node::x0.read(nodes);
+  auto mass = solid::node::mass.in(nodes);
+  auto inv_mass = solid::node::inv_mass.in(nodes);
 
   // Per node, the row sums of the Gershgorin bound (kernels/stable_step.hpp): its tet, its joints, and the
   // contact springs, which on a joint's face replace the joint's once it breaks (the larger of the two
   // counts, as in the global step) and on outer faces add. omega_n^2 = K_n / m_n.
   std::vector<double> stiffness(nodes.size(), 0.0), tet_mass(tets.size());
-  const auto volume = tets.span<const double>("volume0");
-  const auto material = tets.span<const int32_t>("material");
+  const auto volume = solid::tet::volume0.read(tets);
+  const auto material = solid::tet::material.read(tets);
   for (size_t e = 0; e < tets.size(); ++e)
     tet_mass[e] = spec_.materials[static_cast<size_t>(material[e])].density * volume[e];
-  kernels::add_tet_node_stiffness(tets.span<const int32_t>("nodes"), tet_steps_, tet_mass, stiffness);
+  kernels::add_tet_node_stiffness(solid::tet::nodes.read(tets), tet_steps_, tet_mass, stiffness);
   std::vector<double> joint(nodes.size(), 0.0);
   if (joint_forces_) {
     const Table& joints = store_.table(solid::joint_table);
-    kernels::add_joint_node_stiffness(x0, joints.span<const int32_t>("nodes"),
-                                      joints.span<const int32_t>("material"), joint_materials_,
-                                      joints.span<const uint8_t>("broken"), joint);
+    kernels::add_joint_node_stiffness(x0, solid::joint::nodes.read(joints),
+                                      solid::joint::material.read(joints), joint_materials_,
+                                      solid::joint::broken.read(joints), joint);
   }
   std::vector<double> contact_joint, contact_outer;
   if (contact_) contact_->node_stiffness(contact_joint, contact_outer);
@@ -52,7 +52,7 @@ void SolidModel::scale_masses() {
     contact_->update_stable_step();
     stable_dt_ = contact_->damped_step(stable_dt_);
   }
-  store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
+  solid::energy::kinetic0.in(store_)[0] = energies().kinetic;
 
   const double fraction = mass_scaling_.added / mass0_;
   std::string where;

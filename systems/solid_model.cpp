@@ -28,7 +28,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   create_bookkeeping_tables();
   if (spec_.fracture) apply_initial_cracks(zone_);
   if (spec_.contact) build_contact(mesh);
-  store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
+  solid::energy::kinetic0.in(store_)[0] = energies().kinetic;
 
   std::vector<double> prestress;
   if (spec_.initial_stress)
@@ -39,7 +39,7 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
   // The tets' stress is written by the force pass; before the first step (the output at t = 0) the mesh
   // is undeformed, so it is the in-situ stress exactly.
   if (spec_.initial_stress) {
-    auto stress = store_.table(solid::tet_table).span<double>("stress");
+    auto stress = solid::tet::stress.in(store_);
     for (size_t e = 0; 6 * e < stress.size(); ++e)
       for (int c = 0; c < 6; ++c) stress[6 * e + c] = initial_stress_[c];
   }
@@ -59,14 +59,13 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
     // state) is the zero of the energy balance.
     joint_forces_->run(StepContext{0, 0.0, 0.0});
     double stored = 0.0;
-    for (double e : store_.table(solid::joint_table).span<const double>("stored_energy")) stored += e;
-    store_.table(solid::energy_table).span<double>("joint_energy0")[0] = stored;
+    for (double e : solid::joint::stored_energy.read(store_)) stored += e;
+    solid::energy::joint_energy0.in(store_)[0] = stored;
     Table& joints = store_.table(solid::joint_table);
     const Table& nodes = store_.table(solid::node_table);
-    joint_stable_dt_ =
-        kernels::joint_stable_step(nodes.span<const double>("x0"), joints.span<const int32_t>("nodes"),
-                                   joints.span<const int32_t>("material"), joint_materials_,
-                                   nodes.span<const double>("mass"), {}, 0, joints.size());
+    joint_stable_dt_ = kernels::joint_stable_step(
+        solid::node::x0.read(nodes), solid::joint::nodes.read(joints), solid::joint::material.read(joints),
+        joint_materials_, solid::node::mass.read(nodes), {}, 0, joints.size());
     // A tet corner sits in up to three joints besides its tet: Gershgorin adds their omega^2
     // (kernels/joint_forces.hpp), so 1/dt^2 = 1/dt_tet^2 + 3/dt_joint^2.
     stable_dt_ = 1.0 / std::sqrt(1.0 / (tet_stable_dt_ * tet_stable_dt_) +
@@ -113,13 +112,13 @@ void SolidModel::accept_crack_fluid_forces() {
 
 void SolidModel::add_node_mass(std::span<const double> extra) {
   Table& nodes = store_.table(solid::node_table);
-  auto mass = nodes.span<double>("mass");
-  auto inv_mass = nodes.span<double>("inv_mass");
+  auto mass = solid::node::mass.in(nodes);
+  auto inv_mass = solid::node::inv_mass.in(nodes);
   for (size_t n = 0; n < nodes.size(); ++n) {
     mass[n] += extra[n];
     inv_mass[n] = mass[n] > 0 ? 1.0 / mass[n] : 0.0;
   }
-  store_.table(solid::energy_table).span<double>("kinetic0")[0] = energies().kinetic;
+  solid::energy::kinetic0.in(store_)[0] = energies().kinetic;
 }
 
 size_t SolidModel::joint_count() const {
@@ -134,8 +133,8 @@ std::optional<std::string> SolidModel::check_health(const StepContext& after) {
   std::ostringstream why;
   if (tet_forces_->inverted() > 0) {
     const int64_t e = tet_forces_->first_inverted();
-    const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
-    const auto x = store_.table(solid::node_table).span<const double>("x");
+    const auto conn = solid::tet::nodes.read(store_);
+    const auto x = solid::node::x.read(store_);
     double c[3] = {0, 0, 0};
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i) c[i] += 0.25 * x[3 * conn[4 * e + k] + i];
@@ -197,7 +196,7 @@ std::optional<std::string> SolidModel::check_energy(const StepContext& after) {
         << "energy of " << largest_energy_ << " J";
     const Table& events = store_.table(solid::event_table);
     if (events.size() > 0) {
-      const auto c = events.span<const double>("centroid");
+      const auto c = solid::event::centroid.read(events);
       const size_t last = events.size() - 1;
       why << "; " << events.size() << " joints broken, the last at (" << c[3 * last] << ", "
           << c[3 * last + 1] << ", " << c[3 * last + 2] << ") m";
@@ -254,7 +253,7 @@ void SolidModel::summarize(nlohmann::json& summary) const {
                  {"external_work", e.external_work},
                  {"balance_error", e.balance_error()}};
   size_t count[4] = {0, 0, 0, 0};
-  for (uint8_t m : store_.table(solid::event_table).span<const uint8_t>("mode")) ++count[m & 3];
+  for (uint8_t m : solid::event::mode.read(store_)) ++count[m & 3];
   s["fractures"] = {{"tensile", count[1]}, {"shear", count[2]}, {"initial", count[3]}};
   if (contact_) {
     const ContactTotals c = contact_->totals();

@@ -40,22 +40,22 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
   const FractureSpec& f = *spec_.fracture;
   const int points = f.integration_points;
   Table& joints = store_.add_table(solid::joint_table);
-  joints.add<int32_t>("nodes", 6).indexes(IndexTarget::rows_of(solid::node_table));
-  joints.add<int32_t>("tets", 2).indexes(IndexTarget::rows_of(solid::tet_table));
-  joints.add<int32_t>("material");
-  joints.add<double>("d_max", points);
-  joints.add<uint8_t>("broken");
-  joints.add<double>("corner_force", 9);  // side B's corners; side A's are minus these
-  joints.add<double>("opening");
-  joints.add<double>("slip");
-  joints.add<double>("damage");
-  joints.add<double>("stored_energy");
-  joints.add<double>("initial_offset", 3);
+  solid::joint::nodes.create(joints).indexes(IndexTarget::rows_of(solid::node_table));
+  solid::joint::tets.create(joints).indexes(IndexTarget::rows_of(solid::tet_table));
+  solid::joint::material.create(joints);
+  solid::joint::d_max.create(joints, points);
+  solid::joint::broken.create(joints);
+  solid::joint::corner_force.create(joints);  // side B's corners; side A's are minus these
+  solid::joint::opening.create(joints);
+  solid::joint::slip.create(joints);
+  solid::joint::damage.create(joints);
+  solid::joint::stored_energy.create(joints);
+  solid::joint::initial_offset.create(joints);
   joints.resize(dm.joints.size());
-  auto nodes = joints.span<int32_t>("nodes");
-  auto tets = joints.span<int32_t>("tets");
-  auto material = joints.span<int32_t>("material");
-  const auto tet_material = store_.table(solid::tet_table).span<const int32_t>("material");
+  auto nodes = solid::joint::nodes.in(joints);
+  auto tets = solid::joint::tets.in(joints);
+  auto material = solid::joint::material.in(joints);
+  const auto tet_material = solid::tet::material.read(store_);
 
   // One joint material per distinct (material A, material B) pair, in order of first appearance.
   std::map<std::pair<int32_t, int32_t>, int32_t> pair_index;
@@ -84,11 +84,11 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
     }
     material[j] = it->second;
   }
-  joints.column("material").indexes(IndexTarget::list_of(joint_materials_.size()));
+  solid::joint::material.column(store_).indexes(IndexTarget::list_of(joint_materials_.size()));
   // The residual-friction slider's anchors (kernels/joint_law.hpp), only where some material has one.
   if (std::any_of(joint_materials_.begin(), joint_materials_.end(),
                   [](const kernels::JointMaterial& m) { return m.residual_friction > 0.0; })) {
-    joints.add<double>("residual_anchor", 3 * points);
+    solid::joint::residual_anchor.create(joints, 3 * points);
   }
   if (spec_.initial_stress) set_joint_initial_state();
 }
@@ -98,10 +98,10 @@ void SolidModel::build_joints(const DiscontinuousMesh& dm) {
 // unloaded while the tets are stressed, and the mismatch would launch a wave at t = 0.
 void SolidModel::set_joint_initial_state() {
   Table& joints = store_.table(solid::joint_table);
-  const auto x = store_.table(solid::node_table).span<const double>("x0");
-  const auto nodes = joints.span<const int32_t>("nodes");
-  const auto material = joints.span<const int32_t>("material");
-  auto offset = joints.span<double>("initial_offset");
+  const auto x = solid::node::x0.read(store_);
+  const auto nodes = solid::joint::nodes.read(joints);
+  const auto material = solid::joint::material.read(joints);
+  auto offset = solid::joint::initial_offset.in(joints);
   const auto& S = initial_stress_;
   const kernels::Softening rule =
       spec_.fracture->y_compatible ? kernels::Softening::y_compatible : kernels::Softening::energy_exact;
@@ -130,19 +130,20 @@ void SolidModel::set_joint_initial_state() {
 
 void SolidModel::create_bookkeeping_tables() {
   Table& events = store_.add_table(solid::event_table);
-  events.add<int64_t>("step");
-  events.add<double>("time");
+  solid::event::step.create(events);
+  solid::event::time.create(events);
   // Without joints nothing breaks: the log stays empty, and any index in it is wrong.
-  events.add<int32_t>("joint").indexes(
+  solid::event::joint.create(events).indexes(
       store_.has(solid::joint_table) ? IndexTarget::rows_of(solid::joint_table) : IndexTarget::list_of(0));
-  events.add<uint8_t>("mode");
-  events.add<double>("centroid", 3);
-  events.add<double>("normal", 3);
-  events.add<double>("area");
-  events.add<double>("released_energy");
+  solid::event::mode.create(events);
+  solid::event::centroid.create(events);
+  solid::event::normal.create(events);
+  solid::event::area.create(events);
+  solid::event::released_energy.create(events);
   Table& energy = store_.add_table(solid::energy_table);
-  for (const char* c : {"external_work", "tet_work", "joint_work", "damping", "joint_energy0", "kinetic0"})
-    energy.add<double>(c);
+  for (const auto& c : {solid::energy::external_work, solid::energy::tet_work, solid::energy::joint_work,
+                        solid::energy::damping, solid::energy::joint_energy0, solid::energy::kinetic0})
+    c.create(energy);
   energy.resize(1);
 }
 
@@ -156,11 +157,11 @@ namespace rift {
 void SolidModel::apply_initial_cracks(const std::vector<uint8_t>& zone) {
   if (spec_.fracture->initial_cracks.empty()) return;
   Table& joints = store_.table(solid::joint_table);
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  const auto x0 = solid::node::x0.read(store_);
   // A vertex that a tet outside the zone uses has one shared node for all such tets: where they touch
   // the crack from both sides (by an edge or a vertex), that node holds the crack shut.
-  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
-  const auto tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto node_vertex = solid::node::vertex.read(store_);
+  const auto tet_nodes = solid::tet::nodes.read(store_);
   std::vector<uint8_t> outside_vertex;
   for (size_t e = 0; e < zone.size(); ++e)
     if (!zone[e])
@@ -171,8 +172,8 @@ void SolidModel::apply_initial_cracks(const std::vector<uint8_t>& zone) {
       }
   size_t tied = 0;
   const double* first_tied = nullptr;
-  const auto conn = joints.span<const int32_t>("nodes");
-  auto broken = joints.span<uint8_t>("broken");
+  const auto conn = solid::joint::nodes.read(joints);
+  auto broken = solid::joint::broken.in(joints);
   Table& events = store_.table(solid::event_table);
   size_t cracked = 0;
   for (size_t j = 0; j < joints.size(); ++j) {
@@ -213,15 +214,15 @@ void SolidModel::apply_initial_cracks(const std::vector<uint8_t>& zone) {
     const double area2 = std::hypot(n[0], n[1], n[2]);
     const size_t row = events.size();
     events.resize(row + 1);
-    events.span<int64_t>("step")[row] = -1;
-    events.span<double>("time")[row] = 0.0;
-    events.span<int32_t>("joint")[row] = static_cast<int32_t>(j);
-    events.span<uint8_t>("mode")[row] = 3;
+    solid::event::step.in(events)[row] = -1;
+    solid::event::time.in(events)[row] = 0.0;
+    solid::event::joint.in(events)[row] = static_cast<int32_t>(j);
+    solid::event::mode.in(events)[row] = 3;
     for (int i = 0; i < 3; ++i) {
-      events.span<double>("centroid")[3 * row + i] = centroid[i];
-      events.span<double>("normal")[3 * row + i] = area2 > 0 ? n[i] / area2 : 0.0;
+      solid::event::centroid.in(events)[3 * row + i] = centroid[i];
+      solid::event::normal.in(events)[3 * row + i] = area2 > 0 ? n[i] / area2 : 0.0;
     }
-    events.span<double>("area")[row] = 0.5 * area2;
+    solid::event::area.in(events)[row] = 0.5 * area2;
     ++cracked;
   }
   if (cracked == 0)
@@ -269,7 +270,7 @@ void SolidModel::build_contact(const TetMesh& mesh) {
         *contact.penalty, *contact.penalty / mean, mean);
   }
   const Table& tets = store_.table(solid::tet_table);
-  const auto material = tets.span<const int32_t>("material");
+  const auto material = solid::tet::material.read(tets);
   std::vector<double> density(tets.size());
   for (size_t e = 0; e < tets.size(); ++e) density[e] = spec_.materials[material[e]].density;
   contact_ = std::make_unique<ContactSystem>(store_, contact, mesh.nodes.size(), density, std::move(matched));
@@ -287,15 +288,15 @@ namespace rift {
 void SolidModel::add_crack_faces() {
   store_.table(solid::node_table).add<double>(node_force_column(NodeForceSource::crack), 3);
   const Table& joints = store_.table(solid::joint_table);
-  const auto jn = joints.span<const int32_t>("nodes");
-  const auto jt = joints.span<const int32_t>("tets");
-  const auto tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  const auto jn = solid::joint::nodes.read(joints);
+  const auto jt = solid::joint::tets.read(joints);
+  const auto tet_nodes = solid::tet::nodes.read(store_);
+  const auto x0 = solid::node::x0.read(store_);
   Table& faces = store_.table(solid::face_table);
   const size_t first = faces.size();
   faces.resize(first + 2 * joints.size());
-  auto face_nodes = faces.span<int32_t>("nodes");
-  auto face_load = faces.span<int32_t>("load");
+  auto face_nodes = solid::face::nodes.in(faces);
+  auto face_load = solid::face::load.in(faces);
   const int32_t load = static_cast<int32_t>(load_conditions_.size());
   for (size_t j = 0; j < joints.size(); ++j)
     for (int s = 0; s < 2; ++s) {
@@ -324,7 +325,7 @@ void SolidModel::add_crack_faces() {
   crack.surface = "solid.fracture.crack_pressure";
   crack.function = *spec_.fracture->crack_pressure;
   load_conditions_.push_back(crack);
-  faces.column("load").indexes(IndexTarget::list_of(load_conditions_.size()));
+  solid::face::load.column(store_).indexes(IndexTarget::list_of(load_conditions_.size()));
 }
 
 }  // namespace rift

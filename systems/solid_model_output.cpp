@@ -44,11 +44,11 @@ void principal_values(const double* s, double* out) {
 void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
   const Table& nodes = store_.table(solid::node_table);
   const Table& tets = store_.table(solid::tet_table);
-  const auto x = nodes.span<double>("x");
-  const auto x0 = nodes.span<double>("x0");
+  const auto x = solid::node::x.in(nodes);
+  const auto x0 = solid::node::x0.in(nodes);
   displacement_.resize(x.size());
   for (size_t i = 0; i < x.size(); ++i) displacement_[i] = x[i] - x0[i];
-  const auto stress = tets.span<double>("stress");
+  const auto stress = solid::tet::stress.in(tets);
   principal_.resize(3 * tets.size());
   for (size_t e = 0; e < tets.size(); ++e) principal_values(&stress[6 * e], &principal_[3 * e]);
   // The store keeps xx yy zz xy yz zx (Voigt); XDMF's Tensor6 is xx xy xz yy yz zz, and ParaView's XDMF
@@ -69,7 +69,7 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
              Topology::tetrahedron,
              x.data(),
              nodes.size(),
-             tets.span<int32_t>("nodes").data(),
+             solid::tet::nodes.in(tets).data(),
              tets.size(),
              0,
              true,
@@ -84,15 +84,15 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
       grid.fields.push_back({name, Center::cell, components, type, data, grid.cell_count});
   };
   node_field("displacement", displacement_.data());
-  node_field("velocity", nodes.span<double>("v").data());
-  node_field("force", nodes.span<double>("f").data());
+  node_field("velocity", solid::node::v.in(nodes).data());
+  node_field("force", solid::node::f.in(nodes).data());
   if (contact_)
     node_field("contact_force", nodes.span<double>(node_force_column(NodeForceSource::contact)).data());
   cell_field(g, "stress", 6, ElementType::f64, stress_tensor6_.data());
   cell_field(g, "principal_stress", 3, ElementType::f64, principal_.data());
-  cell_field(g, "energy", 1, ElementType::f64, tets.span<double>("energy").data());
-  cell_field(g, "region", 1, ElementType::i32, tets.span<int32_t>("region").data());
-  cell_field(g, "material", 1, ElementType::i32, tets.span<int32_t>("material").data());
+  cell_field(g, "energy", 1, ElementType::f64, solid::tet::energy.in(tets).data());
+  cell_field(g, "region", 1, ElementType::i32, solid::tet::region.in(tets).data());
+  cell_field(g, "material", 1, ElementType::i32, solid::tet::material.in(tets).data());
   grids.push_back(std::move(g));
   if (!store_.has(solid::joint_table)) return;
 
@@ -103,50 +103,49 @@ void SolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
              Topology::wedge,
              x.data(),
              nodes.size(),
-             joints.span<int32_t>("nodes").data(),
+             solid::joint::nodes.in(joints).data(),
              joints.size(),
              0,
              true,
              {}};
-  cell_field(j, "damage", 1, ElementType::f64, joints.span<double>("damage").data());
-  cell_field(j, "opening", 1, ElementType::f64, joints.span<double>("opening").data());
-  cell_field(j, "slip", 1, ElementType::f64, joints.span<double>("slip").data());
-  cell_field(j, "broken", 1, ElementType::u8, joints.span<uint8_t>("broken").data());
-  cell_field(j, "energy", 1, ElementType::f64, joints.span<double>("stored_energy").data());
+  cell_field(j, "damage", 1, ElementType::f64, solid::joint::damage.in(joints).data());
+  cell_field(j, "opening", 1, ElementType::f64, solid::joint::opening.in(joints).data());
+  cell_field(j, "slip", 1, ElementType::f64, solid::joint::slip.in(joints).data());
+  cell_field(j, "broken", 1, ElementType::u8, solid::joint::broken.in(joints).data());
+  cell_field(j, "energy", 1, ElementType::f64, solid::joint::stored_energy.in(joints).data());
   grids.push_back(std::move(j));
 }
 
 SolidEnergies SolidModel::energies() const {
   const Table& nodes = store_.table(solid::node_table);
-  const auto v = nodes.span<const double>("v");
-  const auto m = nodes.span<const double>("mass");
+  const auto v = solid::node::v.read(nodes);
+  const auto m = solid::node::mass.read(nodes);
   SolidEnergies e;
   for (size_t n = 0; n < nodes.size(); ++n)
     e.kinetic +=
         0.5 * m[n] * (v[3 * n] * v[3 * n] + v[3 * n + 1] * v[3 * n + 1] + v[3 * n + 2] * v[3 * n + 2]);
-  for (double w : store_.table(solid::tet_table).span<const double>("energy")) e.elastic += w;
+  for (double w : solid::tet::energy.read(store_)) e.elastic += w;
   const Table& book = store_.table(solid::energy_table);
   // Kinetic energy at t = 0 (an initial velocity) counts as work done before the run.
-  e.external_work = book.span<const double>("external_work")[0] + book.span<const double>("kinetic0")[0];
-  e.damping = book.span<const double>("damping")[0];
+  e.external_work = solid::energy::external_work.read(book)[0] + solid::energy::kinetic0.read(book)[0];
+  e.damping = solid::energy::damping.read(book)[0];
   if (store_.has(solid::joint_table)) {
     double stored = 0.0;
-    for (double w : store_.table(solid::joint_table).span<const double>("stored_energy")) stored += w;
-    e.joint_stored = stored - book.span<const double>("joint_energy0")[0];
+    for (double w : solid::joint::stored_energy.read(store_)) stored += w;
+    e.joint_stored = stored - solid::energy::joint_energy0.read(book)[0];
     // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took,
     // less what broken joints still held when they broke (summed in the log's order: deterministic).
-    for (double w : store_.table(solid::event_table).span<const double>("released_energy"))
-      e.break_release += w;
-    e.fracture = -book.span<const double>("joint_work")[0] - e.joint_stored - e.break_release;
+    for (double w : solid::event::released_energy.read(store_)) e.break_release += w;
+    e.fracture = -solid::energy::joint_work.read(book)[0] - e.joint_stored - e.break_release;
   }
   if (contact_) {
     // Stored in the overlaps and the friction springs: what the contact forces took (minus their work)
     // less what friction and damping dissipated. The kernel's direct overlap energy is not used: its
     // boundary integral does not close where faces lie in each other's planes (lattice faces touching).
-    e.friction = book.span<const double>("friction")[0];
-    e.contact_stored = -book.span<const double>("contact_work")[0] - e.friction -
-                       book.span<const double>("contact_damping")[0];
-    e.contact_damping = book.span<const double>("contact_damping")[0];
+    e.friction = solid::energy::friction.read(book)[0];
+    e.contact_stored = -solid::energy::contact_work.read(book)[0] - e.friction -
+                       solid::energy::contact_damping.read(book)[0];
+    e.contact_damping = solid::energy::contact_damping.read(book)[0];
   }
   return e;
 }
@@ -166,9 +165,9 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
     // Volume between the faces of the broken joints: opening (normal, geometric) x area at the break.
     // What a pressurised crack's opening volume is checked against (Sneddon), and what a fluid fills.
     const Table& ev = store_.table(solid::event_table);
-    const auto joint = ev.span<const int32_t>("joint");
-    const auto area = ev.span<const double>("area");
-    const auto opening = store_.table(solid::joint_table).span<const double>("opening");
+    const auto joint = solid::event::joint.read(ev);
+    const auto area = solid::event::area.read(ev);
+    const auto opening = solid::joint::opening.read(store_);
     double volume = 0.0;
     for (size_t k = 0; k < ev.size(); ++k) volume += std::max(0.0, opening[joint[k]]) * area[k];
     row.emplace_back("solid_crack_volume", volume);
@@ -199,8 +198,8 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
   }
   reaction_.assign(3 * surfaces.size(), 0.0);
   const Table& nodes = store_.table(solid::node_table);
-  const auto held = nodes.span<const int32_t>("held");
-  const auto f = nodes.span<const double>("f");
+  const auto held = solid::node::held.read(nodes);
+  const auto f = solid::node::f.read(nodes);
   for (size_t i = 0; i < held.size(); ++i)
     if (held[i] >= 0) reaction_[3 * slot[held[i]] + i % 3] -= f[i];
   for (size_t k = 0; k < surfaces.size(); ++k)
@@ -212,14 +211,14 @@ void SolidModel::metrics(double time, std::vector<std::pair<std::string, double>
 void SolidModel::write_logs(const std::filesystem::path& dir) const {
   if (!store_.has(solid::joint_table)) return;
   const Table& ev = store_.table(solid::event_table);
-  const auto step = ev.span<const int64_t>("step");
-  const auto time = ev.span<const double>("time");
-  const auto joint = ev.span<const int32_t>("joint");
-  const auto mode = ev.span<const uint8_t>("mode");
-  const auto c = ev.span<const double>("centroid");
-  const auto n = ev.span<const double>("normal");
-  const auto area = ev.span<const double>("area");
-  const auto tets = store_.table(solid::joint_table).span<const int32_t>("tets");
+  const auto step = solid::event::step.read(ev);
+  const auto time = solid::event::time.read(ev);
+  const auto joint = solid::event::joint.read(ev);
+  const auto mode = solid::event::mode.read(ev);
+  const auto c = solid::event::centroid.read(ev);
+  const auto n = solid::event::normal.read(ev);
+  const auto area = solid::event::area.read(ev);
+  const auto tets = solid::joint::tets.read(store_);
   std::string csv = "step,time,joint,tet_a,tet_b,mode,x,y,z,nx,ny,nz,area\n";
   for (size_t r = 0; r < ev.size(); ++r)
     csv += fmt::format("{},{:.17g},{},{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",

@@ -91,24 +91,24 @@ void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh
   std::fill(node::held.in(nodes).begin(), node::held.in(nodes).end(), -1);
 
   Table& tets = store_.add_table(solid::tet_table);
-  tets.add<int32_t>("nodes", 4).indexes(IndexTarget::rows_of(solid::node_table));
-  tets.add<double>("dm_inv", 9);
-  tets.add<double>("volume0");
-  tets.add<int32_t>("material").indexes(IndexTarget::list_of(spec_.materials.size()));
-  tets.add<int32_t>("region").indexes(IndexTarget::list_of(mesh.region_names.size()));
-  tets.add<double>("corner_force", 12);
-  tets.add<double>("stress", 6);
-  tets.add<double>("energy");
-  tets.add<double>("viscous_power");
+  solid::tet::nodes.create(tets).indexes(IndexTarget::rows_of(solid::node_table));
+  solid::tet::dm_inv.create(tets);
+  solid::tet::volume0.create(tets);
+  solid::tet::material.create(tets).indexes(IndexTarget::list_of(spec_.materials.size()));
+  solid::tet::region.create(tets).indexes(IndexTarget::list_of(mesh.region_names.size()));
+  solid::tet::corner_force.create(tets);
+  solid::tet::stress.create(tets);
+  solid::tet::energy.create(tets);
+  solid::tet::viscous_power.create(tets);
   tets.resize(dm.tets.size());
-  auto conn = tets.span<int32_t>("nodes");
-  auto region = tets.span<int32_t>("region");
+  auto conn = solid::tet::nodes.in(tets);
+  auto region = solid::tet::region.in(tets);
   for (size_t e = 0; e < dm.tets.size(); ++e) {
     for (int k = 0; k < 4; ++k) conn[4 * e + k] = dm.tets[e][k];
     region[e] = mesh.tet_region.empty() ? 0 : mesh.tet_region[e];
   }
-  const size_t inverted = kernels::tet_prepare(x0, conn, tets.span<double>("dm_inv"),
-                                               tets.span<double>("volume0"), 0, tets.size());
+  const size_t inverted = kernels::tet_prepare(x0, conn, solid::tet::dm_inv.in(tets),
+                                               solid::tet::volume0.in(tets), 0, tets.size());
   if (inverted > 0)
     throw Error(
         "mesh: " + std::to_string(inverted) +
@@ -118,8 +118,8 @@ void SolidModel::build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh
 
 void SolidModel::assign_materials(const TetMesh& mesh) {
   Table& tets = store_.table(solid::tet_table);
-  auto material = tets.span<int32_t>("material");
-  auto region = tets.span<const int32_t>("region");
+  auto material = solid::tet::material.in(tets);
+  auto region = solid::tet::region.read(tets);
   std::fill(material.begin(), material.end(), -1);
   for (size_t m = 0; m < spec_.materials.size(); ++m) {
     const auto applies = select_regions(mesh, spec_.materials[m].regions,
@@ -136,9 +136,9 @@ void SolidModel::assign_materials(const TetMesh& mesh) {
 
 void SolidModel::apply_initial_velocity(const TetMesh& mesh) {
   Table& tets = store_.table(solid::tet_table);
-  const auto conn = tets.span<const int32_t>("nodes");
-  const auto region = tets.span<const int32_t>("region");
-  auto v = store_.table(solid::node_table).span<double>("v");
+  const auto conn = solid::tet::nodes.read(tets);
+  const auto region = solid::tet::region.read(tets);
+  auto v = solid::node::v.in(store_);
   for (size_t i = 0; i < spec_.initial_velocity.size(); ++i) {
     const InitialVelocitySpec& iv = spec_.initial_velocity[i];
     const auto applies =
@@ -152,12 +152,12 @@ void SolidModel::apply_initial_velocity(const TetMesh& mesh) {
 
 void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& mesh) {
   Table& nodes = store_.table(solid::node_table);
-  auto free = nodes.span<uint8_t>("free");
-  auto held = nodes.span<int32_t>("held");
+  auto free = solid::node::free.in(nodes);
+  auto held = solid::node::held.in(nodes);
   Table& faces = store_.add_table(solid::face_table);
-  faces.add<int32_t>("nodes", 3).indexes(IndexTarget::rows_of(solid::node_table));
-  faces.add<int32_t>("load");
-  faces.add<double>("corner_force", 9);
+  solid::face::nodes.create(faces).indexes(IndexTarget::rows_of(solid::node_table));
+  solid::face::load.create(faces);
+  solid::face::corner_force.create(faces);
 
   // Orient each loaded triangle outward: find its tet through the face and point away from the fourth node.
   std::map<std::array<int32_t, 3>, std::array<int32_t, 4>> face_tet;
@@ -222,17 +222,17 @@ void SolidModel::apply_boundaries(const DiscontinuousMesh& dm, const TetMesh& me
     }
   }
   faces.resize(face_load.size());
-  std::copy(face_nodes.begin(), face_nodes.end(), faces.span<int32_t>("nodes").begin());
-  std::copy(face_load.begin(), face_load.end(), faces.span<int32_t>("load").begin());
-  faces.column("load").indexes(IndexTarget::list_of(load_conditions_.size()));
-  nodes.column("held").indexes(IndexTarget::list_of(velocity_conditions_.size()).or_none());
+  std::copy(face_nodes.begin(), face_nodes.end(), solid::face::nodes.in(faces).begin());
+  std::copy(face_load.begin(), face_load.end(), solid::face::load.in(faces).begin());
+  solid::face::load.column(store_).indexes(IndexTarget::list_of(load_conditions_.size()));
+  solid::node::held.column(store_).indexes(IndexTarget::list_of(velocity_conditions_.size()).or_none());
 }
 
 size_t SolidModel::hold_nodes_in_box(const SolidBoundarySpec& bc, int32_t index) {
   Table& nodes = store_.table(solid::node_table);
-  const auto x0 = nodes.span<const double>("x0");
-  auto free = nodes.span<uint8_t>("free");
-  auto held = nodes.span<int32_t>("held");
+  const auto x0 = solid::node::x0.read(nodes);
+  auto free = solid::node::free.in(nodes);
+  auto held = solid::node::held.in(nodes);
   size_t count = 0;
   for (size_t n = 0; n < nodes.size(); ++n) {
     bool inside = true;
@@ -261,14 +261,12 @@ void SolidModel::build_force_slots() {
   // the node pass relies on a node's slots being grouped by source (tets, joints, faces), which this order
   // gives.
   Table& nodes = store_.table(solid::node_table);
-  const auto tets = store_.table(solid::tet_table).span<const int32_t>("nodes");
-  const auto joints = store_.has(solid::joint_table)
-                          ? store_.table(solid::joint_table).span<const int32_t>("nodes")
-                          : std::span<const int32_t>{};
+  const auto tets = solid::tet::nodes.read(store_);
+  const auto joints =
+      store_.has(solid::joint_table) ? solid::joint::nodes.read(store_) : std::span<const int32_t>{};
   // The crack faces (from crack_face_begin_ on) get no slots: the surface loads gather the pressed ones
   // into solid_node.crack_force, so the node pass does not read a zero row for every intact joint's face.
-  const auto faces =
-      store_.table(solid::face_table).span<const int32_t>("nodes").first(3 * crack_face_begin_);
+  const auto faces = solid::face::nodes.read(store_).first(3 * crack_face_begin_);
   std::vector<int32_t> count(nodes.size() + 1, 0);
   for (auto list : {tets, joints, faces})
     for (int32_t n : list) ++count[n + 1];
@@ -287,7 +285,7 @@ void SolidModel::build_force_slots() {
       slot[next[list[k]]++] = first + static_cast<int32_t>(src == 1 ? joint_corner_slot(k) : k);
     first += static_cast<int32_t>(list.size());
   }
-  slots.column("slot").indexes(
+  solid::slot.column(store_).indexes(
       IndexTarget::list_of(static_cast<size_t>(first)));  // corner slots: tets', then joints', then faces'
 
   for (size_t n = 0; n < nodes.size(); ++n) {
@@ -299,20 +297,20 @@ void SolidModel::build_force_slots() {
 void SolidModel::compute_mass_and_stable_dt() {
   Table& nodes = store_.table(solid::node_table);
   const Table& tets = store_.table(solid::tet_table);
-  const auto conn = tets.span<int32_t>("nodes");
-  const auto vol = tets.span<double>("volume0");
-  const auto material = tets.span<int32_t>("material");
-  auto mass = nodes.span<double>("mass");
+  const auto conn = solid::tet::nodes.in(tets);
+  const auto vol = solid::tet::volume0.in(tets);
+  const auto material = solid::tet::material.in(tets);
+  auto mass = solid::node::mass.in(nodes);
   for (size_t e = 0; e < tets.size(); ++e) {
     for (int k = 0; k < 4; ++k) mass[conn[4 * e + k]] += spec_.materials[material[e]].density * vol[e] / 4.0;
     energy_floor_ += 1e-12 * spec_.materials[material[e]].young * vol[e];
   }
-  auto inv_mass = nodes.span<double>("inv_mass");
+  auto inv_mass = solid::node::inv_mass.in(nodes);
   for (size_t n = 0; n < nodes.size(); ++n) inv_mass[n] = mass[n] > 0 ? 1.0 / mass[n] : 0.0;
 
   // Per-material Lame constants and viscous coefficient eta = 2 h beta sqrt(E rho) (femdem.md 1d), with h
   // the material's mean smallest altitude: beta is then the damping fraction at the typical element.
-  const auto x0 = nodes.span<const double>("x0");
+  const auto x0 = solid::node::x0.read(nodes);
   const size_t nm = spec_.materials.size();
   std::vector<double> h_sum(nm, 0.0), density(nm);
   std::vector<size_t> h_count(nm, 0);
@@ -359,8 +357,8 @@ void SolidModel::check_step_outlier() const {
   std::nth_element(steps.begin(), mid, steps.end());
   const double median = *mid, ratio = tet_stable_dt_ / median;
   if (!(ratio < 1e-2)) return;
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
-  const auto conn = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto x0 = solid::node::x0.read(store_);
+  const auto conn = solid::tet::nodes.read(store_);
   const auto e = static_cast<size_t>(critical_tet_);
   std::array<double, 3> c[4];
   for (int k = 0; k < 4; ++k)

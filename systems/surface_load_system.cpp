@@ -24,13 +24,12 @@ size_t SurfaceLoadSystem::pressed_crack_faces() const {
 
 Access SurfaceLoadSystem::access() const {
   using solid::col;
-  const char* F = solid::face_table;
-  std::vector<std::string> reads{col(solid::node_table, "x"), col(F, "nodes"), col(F, "load")};
+  std::vector<std::string> reads{solid::node::x.key(), solid::face::nodes.key(), solid::face::load.key()};
   // Reading the log orders this system before the joints' pass that appends to it: a joint broken in
   // step n is pressed from step n + 1 on, on any thread count.
-  if (has_crack_faces_) reads.push_back(col(solid::event_table, "joint"));
-  if (store_.table(F).has("fluid_pressure")) reads.push_back(col(F, "fluid_pressure"));
-  std::vector<std::string> writes{col(F, "corner_force")};
+  if (has_crack_faces_) reads.push_back(solid::event::joint.key());
+  if (solid::face::fluid_pressure.exists(store_)) reads.push_back(solid::face::fluid_pressure.key());
+  std::vector<std::string> writes{solid::face::corner_force.key()};
   if (has_crack_faces_) writes.push_back(col(solid::node_table, node_force_column(NodeForceSource::crack)));
   return {reads, writes};
 }
@@ -52,18 +51,19 @@ void SurfaceLoadSystem::run(const StepContext& ctx) {
       for (int c = 0; c < 3; ++c) L.traction[c] = s.direction[c] * scale;
   }
   Table& faces = store_.table(solid::face_table);
-  const auto x = store_.table(solid::node_table).span<double>("x");
-  const auto nodes = faces.span<int32_t>("nodes");
-  const auto load = faces.span<int32_t>("load");
-  const auto force = faces.span<double>("corner_force");
-  const std::span<const double> wetted =
-      faces.has("fluid_pressure") ? faces.span<double>("fluid_pressure") : std::span<double>{};
+  const auto x = solid::node::x.in(store_);
+  const auto nodes = solid::face::nodes.in(faces);
+  const auto load = solid::face::load.in(faces);
+  const auto force = solid::face::corner_force.in(faces);
+  const std::span<const double> wetted = solid::face::fluid_pressure.exists(store_)
+                                             ? solid::face::fluid_pressure.in(faces)
+                                             : std::span<double>{};
   parallel_for(crack_face_begin_, 2048, [&](size_t begin, size_t end) {
     kernels::surface_loads(x, nodes, load, values_, force, begin, end, wetted);
   });
   if (!has_crack_faces_) return;
   // Each broken joint's two faces are adjacent rows; every row is written by one joint only.
-  const auto broken = store_.table(solid::event_table).span<const int32_t>("joint");
+  const auto broken = solid::event::joint.read(store_);
   parallel_for(broken.size(), 1024, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const size_t f = crack_face_begin_ + 2 * static_cast<size_t>(broken[k]);

@@ -47,30 +47,28 @@ void TetForceSystem::set_blocks() {
 }
 
 Access TetForceSystem::access() const {
-  using solid::col;
-  const char* T = solid::tet_table;
-  return {{col(solid::node_table, "x"), col(solid::node_table, "v"), col(T, "nodes"), col(T, "dm_inv"),
-           col(T, "volume0"), col(T, "material")},
-          {col(T, "corner_force"), col(T, "stress"), col(T, "energy"), col(T, "viscous_power"),
-           col(solid::energy_table, "damping")}};
+  return {{solid::node::x.key(), solid::node::v.key(), solid::tet::nodes.key(), solid::tet::dm_inv.key(),
+           solid::tet::volume0.key(), solid::tet::material.key()},
+          {solid::tet::corner_force.key(), solid::tet::stress.key(), solid::tet::energy.key(),
+           solid::tet::viscous_power.key(), solid::energy::damping.key()}};
 }
 
 Access TetForceSystem::fused_access() const {
   Access a = access();
-  std::erase(a.writes, solid::col(solid::tet_table, "corner_force"));
+  std::erase(a.writes, solid::tet::corner_force.key());
   return a;
 }
 
 kernels::TetForceArgs TetForceSystem::step_args(const StepContext& ctx) const {
   Table& nodes = store_.table(solid::node_table);
   Table& tets = store_.table(solid::tet_table);
-  kernels::TetForceArgs a{nodes.span<double>("x"), nodes.span<double>("v"), tets.span<int32_t>("nodes"),
-                          tets.span<double>("dm_inv"), tets.span<double>("volume0"),
-                          tets.span<int32_t>("material"), materials_, tets.span<double>("corner_force"),
+  kernels::TetForceArgs a{solid::node::x.in(nodes), solid::node::v.in(nodes), solid::tet::nodes.in(tets),
+                          solid::tet::dm_inv.in(tets), solid::tet::volume0.in(tets),
+                          solid::tet::material.in(tets), materials_, solid::tet::corner_force.in(tets),
                           // Only outputs and the energy checks read these (StepContext::observed).
-                          ctx.observed ? tets.span<double>("stress") : std::span<double>{},
-                          ctx.observed ? tets.span<double>("energy") : std::span<double>{}};
-  a.viscous_power = tets.span<double>("viscous_power");
+                          ctx.observed ? solid::tet::stress.in(tets) : std::span<double>{},
+                          ctx.observed ? solid::tet::energy.in(tets) : std::span<double>{}};
+  a.viscous_power = solid::tet::viscous_power.in(tets);
   a.initial_stress = initial_stress_;
   return a;
 }
@@ -102,7 +100,7 @@ void TetForceSystem::book(const StepContext& ctx, const Tally& tally) {
   inverted_ = seen.status.inverted;
   first_inverted_ = seen.status.first_inverted;
   // The damping force of this step acts over dt (the work integral's rectangle rule).
-  store_.table(solid::energy_table).span<double>("damping")[0] += ctx.dt * tally.viscous_power;
+  solid::energy::damping.in(store_)[0] += ctx.dt * tally.viscous_power;
 }
 
 void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ranges) {

@@ -9,6 +9,9 @@
 //   x.create(store);                         // set-up
 //   std::span<double> positions = x.in(store);
 //   Access{{x.key()}, {}};                   // "solid_node.x"
+//
+// Width kVariableWidth: the width is the scene's (a joint's integration points), given at creation and not
+// checked at lookup.
 #include <span>
 #include <string>
 
@@ -16,6 +19,8 @@
 #include "engine/core/table.hpp"
 
 namespace rift {
+
+inline constexpr int kVariableWidth = 0;
 
 template <class T, int Width = 1>
 struct ColumnRef {
@@ -30,11 +35,15 @@ struct ColumnRef {
 
   // Adds the column to its table (sized to the table's rows); a column has one creator, so adding it twice
   // throws (Table::add_column).
-  Column& create(Table& t) const {
+  Column& create(Table& t) const requires(Width != kVariableWidth) {
     check_table(t);
     return t.add<T>(name, Width);
   }
-  Column& create(Store& s) const { return create(s.table(table)); }
+  Column& create(Store& s) const requires(Width != kVariableWidth) { return create(s.table(table)); }
+  Column& create(Table& t, int components) const requires(Width == kVariableWidth) {
+    check_table(t);
+    return t.add<T>(name, components);
+  }
 
   bool exists(const Store& s) const { return s.has(table) && s.table(table).has(name); }
 
@@ -46,6 +55,9 @@ struct ColumnRef {
   std::span<const T> in(const Table& t) const { return checked(t).template values<T>(); }
   std::span<T> in(Store& s) const { return in(s.table(table)); }
   std::span<const T> in(const Store& s) const { return in(s.table(table)); }
+  // Read-only, whatever the table's constness.
+  std::span<const T> read(const Table& t) const { return in(t); }
+  std::span<const T> read(const Store& s) const { return in(s); }
 
  private:
   void check_table(const Table& t) const {
@@ -55,7 +67,7 @@ struct ColumnRef {
   auto& checked(TableT& t) const {
     check_table(t);
     auto& column = t.column(name);
-    if (column.components() != Width)
+    if (Width != kVariableWidth && column.components() != Width)
       throw Error("column " + key() + " holds " + std::to_string(column.components()) +
                   " values per row, looked up as " + std::to_string(Width));
     return column;

@@ -32,7 +32,7 @@ FluidMeshAdapter::FluidMeshAdapter(const Store& store, MeshConversionModel& conv
 TetMesh FluidMeshAdapter::make() {
   const auto t0 = std::chrono::steady_clock::now();
   const MeshConversion& surface = conversion_.conversion();  // caught up with every break so far
-  const auto x = store_.table(solid::node_table).span<const double>("x");
+  const auto x = solid::node::x.read(store_);
   const auto tri = surface.triangle_nodes();
   const auto tag = surface.triangle_tag();
   std::vector<double> soup;

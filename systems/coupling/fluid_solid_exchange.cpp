@@ -108,11 +108,11 @@ SolidToFluidSystem::SolidToFluidSystem(Store& store, fluid::FluidSolver& solver,
     // The solid's volumes at the last exchange, for its mean rate of volume change over each window; at
     // first those of the initial configuration, so the exchange at t = 0 sees no change.
     Table& solid_tets = store_.table(solid::tet_table);
-    solid_tets.add<double>("volume_at_exchange", 1);
+    coupling::solid_tet::volume_at_exchange.create(solid_tets);
     pairs_.solid_dilatation.resize(solid_tets.size());
-    kernels::tet_volume_rates(
-        store_.table(solid::node_table).span<const double>("x"), solid_tets.span<const int32_t>("nodes"), 0.0,
-        solid_tets.span<double>("volume_at_exchange"), pairs_.solid_dilatation, 0, solid_tets.size());
+    kernels::tet_volume_rates(solid::node::x.read(store_), solid::tet::nodes.read(solid_tets), 0.0,
+                              coupling::solid_tet::volume_at_exchange.in(solid_tets), pairs_.solid_dilatation,
+                              0, solid_tets.size());
   }
   coupling::cell::velocity_before.create(ft);
   if (settings_.network_inlet) coupling::cell::network_cell.create(ft);
@@ -150,26 +150,24 @@ void SolidToFluidSystem::fluid_mesh_changed() {
 }
 
 Access SolidToFluidSystem::access() const {
-  using solid::col;
-  Access a{{col(solid::node_table, "x"), col(solid::node_table, "v"), col(solid::tet_table, "nodes"),
-            fluid::node::velocity.key()},
+  Access a{{solid::node::x.key(), solid::node::v.key(), solid::tet::nodes.key(), fluid::node::velocity.key()},
            {coupling::cell::solid_volume.key(), coupling::cell::solid_fraction.key(),
             coupling::cell::solid_velocity.key(), coupling::cell::absorption.key(),
-            coupling::cell::velocity_before.key(), col(coupling::state_table, "pairs"),
-            col(coupling::state_table, "cut_cells"), col(coupling::state_table, "solid_volume")}};
+            coupling::cell::velocity_before.key(), coupling::state::pairs.key(),
+            coupling::state::cut_cells.key(), coupling::state::solid_volume.key()}};
   if (settings_.dilatation)
     for (const std::string& c :
-         {col(solid::tet_table, "volume_at_exchange"), coupling::cell::solid_dilatation.key()})
+         {coupling::solid_tet::volume_at_exchange.key(), coupling::cell::solid_dilatation.key()})
       a.writes.push_back(c);
   if (settings_.network_inlet) {
-    a.reads.push_back(col(fracture_flow::books_table, "injected"));
+    a.reads.push_back(fracture_flow::books::injected.key());
     if (store_.has(solid::joint_table)) {
-      a.reads.push_back(col(solid::joint_table, "broken"));
-      a.reads.push_back(col(solid::joint_table, "tets"));
+      a.reads.push_back(solid::joint::broken.key());
+      a.reads.push_back(solid::joint::tets.key());
     }
     a.writes.push_back(coupling::cell::network_cell.key());
-    a.writes.push_back(col(coupling::state_table, "inlet_injected"));
-    a.writes.push_back(col(coupling::state_table, "inlet_sink_mass"));
+    a.writes.push_back(coupling::state::inlet_injected.key());
+    a.writes.push_back(coupling::state::inlet_sink_mass.key());
   }
   return a;
 }
@@ -181,7 +179,7 @@ void SolidToFluidSystem::run(const StepContext&) {
 // The candidate pairs, their overlap volumes and the solid tets' mean velocities, for the solid at node
 // positions x with node velocities v.
 void SolidToFluidSystem::find_pairs(std::span<const double> x, std::span<const double> v) {
-  const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
+  const auto solid_tets = solid::tet::nodes.in(store_);
   const size_t ns = pairs_.solid_ids.size();
   parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
     kernels::tet_bounding_boxes(x, solid_tets, pairs_.solid_ids, pairs_.solid_lo, pairs_.solid_hi, b, e);
@@ -206,7 +204,7 @@ void SolidToFluidSystem::find_pairs(std::span<const double> x, std::span<const d
 // restart does not have: they are found again from the positions then (x_at_exchange), and the pair
 // weights recomputed into scratch. The cells' own values are the checkpoint's and stay untouched.
 void SolidToFluidSystem::rebuild_pairs(std::span<const double> x_at_exchange) {
-  const auto v = store_.table(solid::node_table).span<double>("v");  // only its tet means, unused here
+  const auto v = solid::node::v.in(store_);  // only its tet means, unused here
   find_pairs(x_at_exchange, v);
   const size_t nf = pairs_.fluid_ids.size();
   std::vector<double> volume(nf), fraction(nf), target(3 * nf), sigma(nf);
@@ -230,12 +228,12 @@ void SolidToFluidSystem::rebuild_pairs(std::span<const double> x_at_exchange) {
 
 void SolidToFluidSystem::exchange() {
   const Table& nodes = store_.table(solid::node_table);
-  const auto x = nodes.span<double>("x");
-  const auto solid_tets = store_.table(solid::tet_table).span<int32_t>("nodes");
+  const auto x = solid::node::x.in(nodes);
+  const auto solid_tets = solid::tet::nodes.in(store_);
   const size_t ns = pairs_.solid_ids.size(), nf = pairs_.fluid_ids.size();
-  find_pairs(x, nodes.span<double>("v"));
+  find_pairs(x, solid::node::v.in(nodes));
   if (settings_.dilatation) {
-    const auto volume_prev = store_.table(solid::tet_table).span<double>("volume_at_exchange");
+    const auto volume_prev = coupling::solid_tet::volume_at_exchange.in(store_);
     parallel_for(ns, kTetGrain, [&](size_t b, size_t e) {
       kernels::tet_volume_rates(x, solid_tets, settings_.dt, volume_prev, pairs_.solid_dilatation, b, e);
     });
@@ -279,9 +277,9 @@ void SolidToFluidSystem::exchange() {
     covered += cells.solid_volume[k];
     cut += cells.fraction[k] > 0.0 && cells.fraction[k] < 1.0;
   }
-  state.span<int64_t>("pairs")[0] = static_cast<int64_t>(np);
-  state.span<int64_t>("cut_cells")[0] = static_cast<int64_t>(cut);
-  state.span<double>("solid_volume")[0] = covered;
+  coupling::state::pairs.in(state)[0] = static_cast<int64_t>(np);
+  coupling::state::cut_cells.in(state)[0] = static_cast<int64_t>(cut);
+  coupling::state::solid_volume.in(state)[0] = covered;
 }
 
 // What the cracks' network took in since the last exchange (its well's book, kg) leaves the fluid over the
@@ -289,11 +287,11 @@ void SolidToFluidSystem::exchange() {
 // The books (inlet_injected, inlet_sink_mass) make the two sides' masses agree exactly.
 void SolidToFluidSystem::network_sink() {
   Table& state = store_.table(coupling::state_table);
-  const double injected = store_.table(fracture_flow::books_table).span<double>("injected")[0];
-  double& seen = state.span<double>("inlet_injected")[0];
+  const double injected = fracture_flow::books::injected.in(store_)[0];
+  double& seen = coupling::state::inlet_injected.in(state)[0];
   const double dm = injected - seen;
   seen = injected;
-  state.span<double>("inlet_sink_mass")[0] += dm;
+  coupling::state::inlet_sink_mass.in(state)[0] += dm;
   find_inlet_cells(settings_, solver_.nodes(), solver_.tets(), coupling::cell::solid_fraction.in(store_),
                    solver_.volumes(), solver_.pressure(), pairs_);
   auto source = solver_.volume_source();
@@ -309,7 +307,7 @@ void SolidToFluidSystem::set_network_wall(std::span<const int32_t> wall_tets) {
   wall_tet_.assign(ns, 0);
   for (int32_t t : wall_tets) wall_tet_[size_t(t)] = 1;
   network_tet_.resize(ns);
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  const auto x0 = solid::node::x0.read(store_);
   for (int d = 0; d < 3; ++d) rock_box_[size_t(d)] = rock_box_[size_t(d) + 3] = x0[size_t(d)];
   for (size_t i = 0; i < x0.size(); ++i) {
     rock_box_[i % 3] = std::min(rock_box_[i % 3], x0[i]);
@@ -325,8 +323,8 @@ void SolidToFluidSystem::mark_network_cells() {
   std::copy(wall_tet_.begin(), wall_tet_.end(), network_tet_.begin());
   if (store_.has(solid::joint_table)) {
     const Table& joints = store_.table(solid::joint_table);
-    const auto broken = joints.span<const uint8_t>("broken");
-    const auto tets = joints.span<const int32_t>("tets");
+    const auto broken = solid::joint::broken.read(joints);
+    const auto tets = solid::joint::tets.read(joints);
     for (size_t j = 0; j < broken.size(); ++j)
       if (broken[j] != 0) network_tet_[size_t(tets[2 * j])] = network_tet_[size_t(tets[2 * j + 1])] = 1;
   }
@@ -364,28 +362,29 @@ void SolidToFluidSystem::restore_solver() {
 
 Access FluidToSolidSystem::access() const {
   using solid::col;
-  const char* S = coupling::state_table;
-  Access a{{fluid::node::velocity.key(), coupling::cell::solid_velocity.key(),
-            coupling::cell::velocity_before.key(), coupling::cell::absorption.key(), fluid::tet::nodes.key(),
-            col(solid::tet_table, "nodes")},
-           {col(solid::node_table, node_force_column(NodeForceSource::fluid)), col(S, "exchanges"),
-            col(S, "penalty_scale"), col(S, "force"), col(S, "penalty"), col(S, "absorption"),
-            col(S, "previous_force"), col(S, "previous_change"), col(S, "growing")}};
-  if (settings_.oscillation_lag == 2) a.writes.push_back(col(S, "older_change"));
+  Access a{
+      {fluid::node::velocity.key(), coupling::cell::solid_velocity.key(),
+       coupling::cell::velocity_before.key(), coupling::cell::absorption.key(), fluid::tet::nodes.key(),
+       solid::tet::nodes.key()},
+      {col(solid::node_table, node_force_column(NodeForceSource::fluid)), coupling::state::exchanges.key(),
+       coupling::state::penalty_scale.key(), coupling::state::force.key(), coupling::state::penalty.key(),
+       coupling::state::absorption.key(), coupling::state::previous_force.key(),
+       coupling::state::previous_change.key(), coupling::state::growing.key()}};
+  if (settings_.oscillation_lag == 2) a.writes.push_back(coupling::state::older_change.key());
   if (!pairs_.wet_faces.empty() || !settings_.volume_force) {  // sampled, or their total push reported
-    a.reads.push_back(col(solid::node_table, "x"));
-    a.reads.push_back(col(solid::face_table, "nodes"));
+    a.reads.push_back(solid::node::x.key());
+    a.reads.push_back(solid::face::nodes.key());
   }
   if (!pairs_.wet_faces.empty() || settings_.network_inlet) {  // the fluid's pressure at points
     a.reads.push_back(fluid::node::x.key());
     a.reads.push_back(fluid::node::pressure.key());
   }
-  if (!pairs_.wet_faces.empty()) a.writes.push_back(col(solid::face_table, "fluid_pressure"));
-  if (settings_.network_inlet) a.writes.push_back(col(fracture_flow::books_table, "inlet_pressure"));
+  if (!pairs_.wet_faces.empty()) a.writes.push_back(solid::face::fluid_pressure.key());
+  if (settings_.network_inlet) a.writes.push_back(fracture_flow::books::inlet_pressure.key());
   if (settings_.added_mass > 0.0) {
-    a.reads.push_back(col(solid::node_table, "v"));
-    a.reads.push_back(col(solid::node_table, "fluid_added_mass"));
-    a.writes.push_back(col(solid::node_table, "window_velocity"));
+    a.reads.push_back(solid::node::v.key());
+    a.reads.push_back(coupling::solid_node::fluid_added_mass.key());
+    a.writes.push_back(coupling::solid_node::window_velocity.key());
   }
   return a;
 }
@@ -420,8 +419,7 @@ void FluidToSolidSystem::exchange(bool initial) {
   parallel_for(np, kPairGrain, [&](size_t b, size_t e) { kernels::fluid_to_solid_pairs(args, b, e); });
   auto node_force = store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::fluid));
   if (settings_.volume_force)
-    kernels::gather_to_solid_nodes(list, args.force, 3, store_.table(solid::tet_table).span<int32_t>("nodes"),
-                                   node_force);
+    kernels::gather_to_solid_nodes(list, args.force, 3, solid::tet::nodes.in(store_), node_force);
   else
     std::fill(node_force.begin(), node_force.end(), 0.0);  // the wetted faces carry the fluid's push
   if (settings_.added_mass > 0.0) add_virtual_mass_force();
@@ -446,27 +444,27 @@ void FluidToSolidSystem::exchange(bool initial) {
         absorption[d] += sigma[k] * fluid_volume_[k] * (pairs_.fluid_velocity[3 * k + d] - target[3 * k + d]);
   if (!settings_.volume_force) wetted_face_total(force);
   watch_oscillation(force);
-  state.span<int64_t>("exchanges")[0] += 1;
-  state.span<double>("penalty_scale")[0] = scale;
+  coupling::state::exchanges.in(state)[0] += 1;
+  coupling::state::penalty_scale.in(state)[0] = scale;
   for (int d = 0; d < 3; ++d) {
-    state.span<double>("force")[d] = force[d];
-    state.span<double>("penalty")[d] = penalty[d];
-    state.span<double>("absorption")[d] = absorption[d];
+    coupling::state::force.in(state)[d] = force[d];
+    coupling::state::penalty.in(state)[d] = penalty[d];
+    coupling::state::absorption.in(state)[d] = absorption[d];
   }
 }
 
 void FluidToSolidSystem::set_added_mass() {
   Table& nodes = store_.table(solid::node_table);
-  nodes.add<double>("fluid_added_mass", 1);
-  nodes.add<double>("window_velocity", 3);
+  coupling::solid_node::fluid_added_mass.create(nodes);
+  coupling::solid_node::window_velocity.create(nodes);
   const auto& list = pairs_.broad.pairs;
   std::vector<double> pair_mass(list.size());  // once, at set-up
   for (size_t p = 0; p < list.size(); ++p)
     pair_mass[p] = settings_.added_mass * settings_.rho * pairs_.volume[p];
-  kernels::gather_to_solid_nodes(list, pair_mass, 1, store_.table(solid::tet_table).span<int32_t>("nodes"),
-                                 nodes.span<double>("fluid_added_mass"));
-  const auto v = nodes.span<double>("v");
-  std::copy(v.begin(), v.end(), nodes.span<double>("window_velocity").begin());
+  kernels::gather_to_solid_nodes(list, pair_mass, 1, solid::tet::nodes.in(store_),
+                                 coupling::solid_node::fluid_added_mass.in(nodes));
+  const auto v = solid::node::v.in(nodes);
+  std::copy(v.begin(), v.end(), coupling::solid_node::window_velocity.in(nodes).begin());
 }
 
 // c_a rho_f V (a - g) with a the node's mean acceleration over the window just ended: the lagged estimate
@@ -474,9 +472,9 @@ void FluidToSolidSystem::set_added_mass() {
 // sides), less the weight the node pass gives the virtual mass.
 void FluidToSolidSystem::add_virtual_mass_force() {
   Table& nodes = store_.table(solid::node_table);
-  const auto extra = nodes.span<double>("fluid_added_mass");
-  const auto v = nodes.span<double>("v");
-  auto v_window = nodes.span<double>("window_velocity");
+  const auto extra = coupling::solid_node::fluid_added_mass.in(nodes);
+  const auto v = solid::node::v.in(nodes);
+  auto v_window = coupling::solid_node::window_velocity.in(nodes);
   auto force = nodes.span<double>(node_force_column(NodeForceSource::fluid));
   for (size_t i = 0; i < v.size(); ++i) {
     force[i] += extra[i / 3] * ((v[i] - v_window[i]) / settings_.dt - settings_.solid_gravity[i % 3]);
@@ -492,12 +490,12 @@ void FluidToSolidSystem::add_virtual_mass_force() {
 // (measured at density ratio 0.1: 78, -257, -541, 837, 3324, -1183, -17068, ... N).
 void FluidToSolidSystem::watch_oscillation(const double force[3]) {
   Table& state = store_.table(coupling::state_table);
-  auto previous = state.span<double>("previous_force");
-  auto change = state.span<double>("previous_change");
+  auto previous = coupling::state::previous_force.in(state);
+  auto change = coupling::state::previous_change.in(state);
   const bool two_back = settings_.oscillation_lag == 2;
-  auto older = two_back ? state.span<double>("older_change") : std::span<double>{};
+  auto older = two_back ? coupling::state::older_change.in(state) : std::span<double>{};
   const auto reference = two_back ? older : change;
-  int64_t& growing = state.span<int64_t>("growing")[0];
+  int64_t& growing = coupling::state::growing.in(state)[0];
   double delta[3], dot = 0.0, norm_old = 0.0, norm = 0.0, size = 0.0;
   for (int d = 0; d < 3; ++d) {
     delta[d] = force[d] - previous[d];
@@ -516,7 +514,7 @@ void FluidToSolidSystem::watch_oscillation(const double force[3]) {
 }
 
 void FluidToSolidSystem::set_wetted_faces(std::vector<int32_t> faces) {
-  store_.table(solid::face_table).add<double>("fluid_pressure", 1);
+  solid::face::fluid_pressure.create(store_);
   const size_t n = faces.size();
   pairs_.wet_faces = std::move(faces);
   pairs_.wet_points.resize(3 * n);
@@ -525,9 +523,9 @@ void FluidToSolidSystem::set_wetted_faces(std::vector<int32_t> faces) {
 
 // The fluid's pressure at each wetted face's current centroid, held over the next window like the force.
 void FluidToSolidSystem::sample_wetted_faces() {
-  const auto x = store_.table(solid::node_table).span<double>("x");
+  const auto x = solid::node::x.in(store_);
   Table& faces = store_.table(solid::face_table);
-  const auto face_nodes = faces.span<int32_t>("nodes");
+  const auto face_nodes = solid::face::nodes.in(faces);
   auto& pts = pairs_.wet_points;
   for (size_t k = 0; k < pairs_.wet_faces.size(); ++k) {
     const size_t f = static_cast<size_t>(pairs_.wet_faces[k]);
@@ -542,7 +540,7 @@ void FluidToSolidSystem::sample_wetted_faces() {
   pairs_.wet_outside = kernels::interpolate_p1_at_points(fluid::node::x.in(store_), fluid::tet::nodes.in(ft),
                                                          fluid::node::pressure.in(store_), pts,
                                                          pairs_.wet_broad.pairs, pairs_.wet_pressure);
-  auto p = faces.span<double>("fluid_pressure");
+  auto p = solid::face::fluid_pressure.in(faces);
   for (size_t k = 0; k < pairs_.wet_faces.size(); ++k)
     p[static_cast<size_t>(pairs_.wet_faces[k])] = pairs_.wet_pressure[k];
 }
@@ -553,14 +551,14 @@ void FluidToSolidSystem::sample_network_inlet() {
   const Table& nodes = store_.table(fluid::node_table);
   pairs_.inlet_pressure = inlet_pressure(settings_, fluid::node::x.in(nodes), fluid::tet::nodes.in(store_),
                                          fluid::node::pressure.in(nodes), pairs_);
-  store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0] = pairs_.inlet_pressure;
+  fracture_flow::books::inlet_pressure.in(store_)[0] = pairs_.inlet_pressure;
 }
 
 // The wetted faces' total push, sum_f -p_f n_f A_f (kernels::face_area_vector), in face order.
 void FluidToSolidSystem::wetted_face_total(double force[3]) const {
-  const auto x = store_.table(solid::node_table).span<double>("x");
+  const auto x = solid::node::x.in(store_);
   const Table& faces = store_.table(solid::face_table);
-  const auto nodes = faces.span<int32_t>("nodes");
+  const auto nodes = solid::face::nodes.in(faces);
   for (int d = 0; d < 3; ++d) force[d] = 0.0;
   for (size_t k = 0; k < pairs_.wet_faces.size(); ++k) {
     double na[3];

@@ -38,21 +38,22 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   settings_.solid_gravity = solid.spec().gravity;
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) settings_.oscillation_lag = 2;
   Table& state = store_.add_table(coupling::state_table);
-  for (const char* c : {"exchanges", "pairs", "cut_cells"}) state.add<int64_t>(c, 1);
-  for (const char* c : {"solid_volume", "penalty_scale"}) state.add<double>(c, 1);
-  for (const char* c : {"force", "penalty", "absorption", "previous_force", "previous_change"})
-    state.add<double>(c, 3);
-  state.add<int64_t>("growing", 1);
+  namespace cs = coupling::state;
+  for (const auto& c : {cs::exchanges, cs::pairs, cs::cut_cells}) c.create(state);
+  for (const auto& c : {cs::solid_volume, cs::penalty_scale}) c.create(state);
+  for (const auto& c : {cs::force, cs::penalty, cs::absorption, cs::previous_force, cs::previous_change})
+    c.create(state);
+  coupling::state::growing.create(state);
   // The network inlet's books: the network's intake (its well's injected mass) at the last exchange, and
   // the mass the fluid has given up through the sink so far.
   if (spec.network_inlet)
-    for (const char* c : {"inlet_injected", "inlet_sink_mass"}) state.add<double>(c, 1);
+    for (const auto& c : {cs::inlet_injected, cs::inlet_sink_mass}) c.create(state);
   // Concurrent only (so the sequential coupling's state, and its hash, are unchanged): 1 while the store's
   // fluid state is already the window's end, a checkpoint having joined the fluid step mid-window. A
   // restart from there must not take that step again.
   if (spec.coupling == FluidSolidSpec::Coupling::concurrent) {
-    state.add<uint8_t>("fluid_ahead", 1);
-    state.add<double>("older_change", 3);  // the oscillation watch's change two fluid steps back
+    coupling::state::fluid_ahead.create(state);
+    coupling::state::older_change.create(state);  // the oscillation watch's change two fluid steps back
   }
   state.resize(1);
   solid.accept_fluid_forces();
@@ -64,14 +65,14 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
     concurrent_ = std::make_unique<ConcurrentFluidStep>(*fluid_step_);
     // The solid's positions at the last exchange: its pairs serve the window's end, so a restart inside
     // the window finds them again from these (SolidToFluidSystem::rebuild_pairs).
-    store_.table(solid::node_table).add<double>("x_at_exchange", 3);
+    coupling::solid_node::x_at_exchange.create(store_);
   }
-  for (double v : store_.table(solid::tet_table).span<double>("volume0")) solid_volume_ += v;
+  for (double v : solid::tet::volume0.in(store_)) solid_volume_ += v;
   // The exchange at t = 0: the fluid's first step sees the solid, and the first window already feels the
   // fluid's body force (buoyancy); the absorption's reaction follows from the first fluid step on.
   std::vector<int32_t> wetted;
   const auto& loads = solid.load_conditions();
-  const auto face_load = store_.table(solid::face_table).span<int32_t>("load");
+  const auto face_load = solid::face::load.in(store_);
   for (size_t f = 0; f < face_load.size(); ++f)
     if (loads[static_cast<size_t>(face_load[f])].kind == SolidBoundarySpec::Kind::fluid_pressure)
       wetted.push_back(static_cast<int32_t>(f));
@@ -80,11 +81,11 @@ FluidSolidModel::FluidSolidModel(Store& store, SolidModel& solid, FluidModel& fl
   if (concurrent_) keep_exchange_positions();
   if (spec.added_mass > 0.0) {
     to_solid_->set_added_mass();
-    solid.add_node_mass(store_.table(solid::node_table).span<double>("fluid_added_mass"));
+    solid.add_node_mass(coupling::solid_node::fluid_added_mass.in(store_));
   }
   to_solid_->exchange(/*initial=*/true);
-  store_.table(coupling::state_table).span<int64_t>("growing")[0] = 0;
-  store_.table(coupling::state_table).span<int64_t>("exchanges")[0] = 0;
+  coupling::state::growing.in(store_)[0] = 0;
+  coupling::state::exchanges.in(store_)[0] = 0;
 }
 
 FluidSolidModel::~FluidSolidModel() = default;
@@ -92,13 +93,13 @@ FluidSolidModel::~FluidSolidModel() = default;
 void FluidSolidModel::restored(const StepContext&) {
   if (adapter_) fluid_mesh_changed();  // the fluid model rebuilt its solver on the checkpoint's mesh
   to_fluid_->restore_solver();
-  if (concurrent_) to_fluid_->rebuild_pairs(store_.table(solid::node_table).span<double>("x_at_exchange"));
+  if (concurrent_) to_fluid_->rebuild_pairs(coupling::solid_node::x_at_exchange.in(store_));
 }
 
 void FluidSolidModel::keep_exchange_positions() {
   Table& nodes = store_.table(solid::node_table);
-  const auto x = nodes.span<double>("x");
-  std::copy(x.begin(), x.end(), nodes.span<double>("x_at_exchange").begin());
+  const auto x = solid::node::x.in(nodes);
+  std::copy(x.begin(), x.end(), coupling::solid_node::x_at_exchange.in(nodes).begin());
 }
 
 // The window of solid steps [t_n, t_n+1) starts with the launch of the fluid step t_n -> t_n+1, from what
@@ -120,7 +121,7 @@ void timed(SystemTiming& t, F&& fn) {
 // At the window's end t_n+1, once the fluid step is joined: its force goes to the solid for the next
 // window, as in the sequential coupling but for the solid's time the fluid saw.
 void FluidSolidModel::exchange_fluid_to_solid(const StepContext&) {
-  store_.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0] = 0;
+  coupling::state::fluid_ahead.in(store_)[0] = 0;
   timed(to_solid_time_, [&] { to_solid_->exchange(); });
 }
 
@@ -157,7 +158,7 @@ void FluidSolidModel::fluid_mesh_changed() {
 void FluidSolidModel::join() {
   if (!concurrent_ || !concurrent_->running()) return;
   concurrent_->join();
-  store_.table(coupling::state_table).span<uint8_t>("fluid_ahead")[0] = 1;
+  coupling::state::fluid_ahead.in(store_)[0] = 1;
 }
 
 // What the fluid task may touch while the graph runs the solid's sub-steps: the fluid step's declared
@@ -182,9 +183,9 @@ std::vector<SystemTiming> FluidSolidModel::timings() const {
 
 std::optional<std::string> FluidSolidModel::check_health(const StepContext& after) {
   const Table& state = store_.table(coupling::state_table);
-  const auto force = state.span<double>("force");
-  const auto penalty = state.span<double>("penalty");
-  const auto absorption = state.span<double>("absorption");
+  const auto force = coupling::state::force.in(state);
+  const auto penalty = coupling::state::penalty.in(state);
+  const auto absorption = coupling::state::absorption.in(state);
   const double t_fluid = static_cast<double>(after.step / settings_.substeps) * settings_.dt;
   for (int d = 0; d < 3; ++d)
     if (!std::isfinite(force[d]))
@@ -194,10 +195,10 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
           "absorption overflowed. What to change: lower fluid.dt (with it the solid's window of "
           "fluid_solid.substeps steps).",
           t_fluid);
-  if (state.span<int64_t>("growing")[0] >= 4) {
+  if (coupling::state::growing.in(state)[0] >= 4) {
     const Table& nodes = store_.table(solid::node_table);
     double mass = 0.0;
-    for (double m : nodes.span<double>("mass")) mass += m;
+    for (double m : solid::node::mass.in(nodes)) mass += m;
     return fmt::format(
         "the fluid's force on the solid oscillates with a growing amplitude: its change has flipped sign and "
         "grown for 4 fluid steps in a row, up to t = {:.6g} s (force now ({:.4g}, {:.4g}, {:.4g}) N). Likely "
@@ -215,7 +216,8 @@ std::optional<std::string> FluidSolidModel::check_health(const StepContext& afte
   // Newton's third law: the solid's penalty force is minus what the fluid's absorption felt, exactly but
   // for round-off (kernels/fluid_solid_exchange.hpp), also where solid tets overlap (the pair weights).
   // A gap means the absorption the fluid stepped with is not the one the pairs were weighted for.
-  const double scale = state.span<double>("penalty_scale")[0];  // sum of |pair penalty|: the round-off scale
+  const double scale =
+      coupling::state::penalty_scale.in(state)[0];  // sum of |pair penalty|: the round-off scale
   double gap = 0.0;
   for (int d = 0; d < 3; ++d) gap = std::max(gap, std::abs(penalty[d] - absorption[d]));
   if (gap > 1e-9 * scale && gap > 0.0)
@@ -252,17 +254,17 @@ void FluidSolidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vect
 
 void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>>& row) {
   const Table& state = store_.table(coupling::state_table);
-  const auto force = state.span<double>("force");
-  const auto penalty = state.span<double>("penalty");
+  const auto force = coupling::state::force.in(state);
+  const auto penalty = coupling::state::penalty.in(state);
   row.emplace_back("fluid_solid_force_x", force[0]);
   row.emplace_back("fluid_solid_force_y", force[1]);
   row.emplace_back("fluid_solid_force_z", force[2]);
   row.emplace_back("fluid_solid_penalty_x", penalty[0]);
   row.emplace_back("fluid_solid_penalty_y", penalty[1]);
   row.emplace_back("fluid_solid_penalty_z", penalty[2]);
-  row.emplace_back("fluid_solid_solid_volume", state.span<double>("solid_volume")[0]);
-  row.emplace_back("fluid_solid_cut_cells", static_cast<double>(state.span<int64_t>("cut_cells")[0]));
-  row.emplace_back("fluid_solid_pairs", static_cast<double>(state.span<int64_t>("pairs")[0]));
+  row.emplace_back("fluid_solid_solid_volume", coupling::state::solid_volume.in(state)[0]);
+  row.emplace_back("fluid_solid_cut_cells", static_cast<double>(coupling::state::cut_cells.in(state)[0]));
+  row.emplace_back("fluid_solid_pairs", static_cast<double>(coupling::state::pairs.in(state)[0]));
   // The pressure range over the nodes of the cells the fluid fills (solid fraction below 0.5): the real
   // fluid's, without the fictitious fluid inside the solid, nor the cells the cracks' network owns (their
   // fluid is the network's, its pressure the network's vertices').
@@ -285,10 +287,9 @@ void FluidSolidModel::metrics(double, std::vector<std::pair<std::string, double>
   row.emplace_back("fluid_region_pressure_min", pmin);
   row.emplace_back("fluid_region_pressure_max", pmax);
   if (settings_.network_inlet) {
-    row.emplace_back("fluid_solid_inlet_pressure",
-                     store_.table(fracture_flow::books_table).span<double>("inlet_pressure")[0]);
-    row.emplace_back("fluid_solid_inlet_sink_mass", state.span<double>("inlet_sink_mass")[0]);
-    row.emplace_back("fluid_solid_inlet_injected", state.span<double>("inlet_injected")[0]);
+    row.emplace_back("fluid_solid_inlet_pressure", fracture_flow::books::inlet_pressure.in(store_)[0]);
+    row.emplace_back("fluid_solid_inlet_sink_mass", coupling::state::inlet_sink_mass.in(state)[0]);
+    row.emplace_back("fluid_solid_inlet_injected", coupling::state::inlet_injected.in(state)[0]);
   }
 }
 
@@ -303,14 +304,14 @@ void FluidSolidModel::summarize(nlohmann::json& summary) const {
   s["force_model"] = settings_.volume_force ? "volume" : "wetted_faces";
   s["wetted_faces"] = pairs_.wet_faces.size();
   s["wetted_faces_outside_fluid"] = pairs_.wet_outside;
-  s["exchanges"] = state.span<int64_t>("exchanges")[0];
-  s["pairs"] = state.span<int64_t>("pairs")[0];
-  s["cut_cells"] = state.span<int64_t>("cut_cells")[0];
+  s["exchanges"] = coupling::state::exchanges.in(state)[0];
+  s["pairs"] = coupling::state::pairs.in(state)[0];
+  s["cut_cells"] = coupling::state::cut_cells.in(state)[0];
   s["solid_volume"] = solid_volume_;
-  s["solid_volume_in_fluid"] = state.span<double>("solid_volume")[0];
-  const auto f = state.span<double>("force");
-  const auto p = state.span<double>("penalty");
-  const auto a = state.span<double>("absorption");
+  s["solid_volume_in_fluid"] = coupling::state::solid_volume.in(state)[0];
+  const auto f = coupling::state::force.in(state);
+  const auto p = coupling::state::penalty.in(state);
+  const auto a = coupling::state::absorption.in(state);
   s["force"] = {f[0], f[1], f[2]};
   s["penalty"] = {p[0], p[1], p[2]};
   s["absorption"] = {a[0], a[1], a[2]};

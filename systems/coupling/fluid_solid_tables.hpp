@@ -18,8 +18,11 @@
 //            (added-mass instability); concurrent only: older_change (3, the change two fluid steps back)
 //            and fluid_ahead (u8, 1: the stored fluid state is already the window's end, a checkpoint having
 //            joined its step)
+#include <cstdint>
+
 #include "engine/core/column_ref.hpp"
 #include "systems/fluid/fluid_tables.hpp"
+#include "systems/solid_tables.hpp"
 
 namespace rift::coupling {
 
@@ -37,5 +40,35 @@ inline constexpr ColumnRef<double> solid_dilatation{fluid::tet_table, "solid_dil
 inline constexpr ColumnRef<double, 3> velocity_before{fluid::tet_table, "velocity_before"};
 inline constexpr ColumnRef<double> network_cell{fluid::tet_table, "network_cell"};
 }  // namespace cell
+
+// The coupling's columns of the solid's tables.
+namespace solid_node {
+inline constexpr ColumnRef<double> fluid_added_mass{solid::node_table, "fluid_added_mass"};
+inline constexpr ColumnRef<double, 3> window_velocity{solid::node_table, "window_velocity"};
+inline constexpr ColumnRef<double, 3> x_at_exchange{solid::node_table, "x_at_exchange"};
+}  // namespace solid_node
+namespace solid_tet {
+// the tet's volume at the last exchange, for the solid's dilatation rate
+inline constexpr ColumnRef<double> volume_at_exchange{solid::tet_table, "volume_at_exchange"};
+}  // namespace solid_tet
+
+// fluid_solid: one row, created in this order.
+namespace state {
+inline constexpr ColumnRef<int64_t> exchanges{state_table, "exchanges"};
+inline constexpr ColumnRef<int64_t> pairs{state_table, "pairs"};
+inline constexpr ColumnRef<int64_t> cut_cells{state_table, "cut_cells"};
+inline constexpr ColumnRef<double> solid_volume{state_table, "solid_volume"};
+inline constexpr ColumnRef<double> penalty_scale{state_table, "penalty_scale"};
+inline constexpr ColumnRef<double, 3> force{state_table, "force"};
+inline constexpr ColumnRef<double, 3> penalty{state_table, "penalty"};
+inline constexpr ColumnRef<double, 3> absorption{state_table, "absorption"};
+inline constexpr ColumnRef<double, 3> previous_force{state_table, "previous_force"};
+inline constexpr ColumnRef<double, 3> previous_change{state_table, "previous_change"};
+inline constexpr ColumnRef<int64_t> growing{state_table, "growing"};
+inline constexpr ColumnRef<double> inlet_injected{state_table, "inlet_injected"};
+inline constexpr ColumnRef<double> inlet_sink_mass{state_table, "inlet_sink_mass"};
+inline constexpr ColumnRef<uint8_t> fluid_ahead{state_table, "fluid_ahead"};
+inline constexpr ColumnRef<double, 3> older_change{state_table, "older_change"};
+}  // namespace state
 
 }  // namespace rift::coupling

@@ -125,14 +125,14 @@ FluidModel::FluidModel(Store& store, const TetMesh& mesh, const FluidSpec& spec,
   fluid::tet::pressure_subscale.create(tets);
   if (spec.adapt) {
     Table& faces = store_.add_table(fluid::boundary_table);
-    faces.add<int32_t>("nodes", 3).indexes(IndexTarget::rows_of(fluid::node_table));
-    faces.add<int32_t>("surface", 1).indexes(IndexTarget::list_of(mesh.surface_names.size()));
+    fluid::boundary::nodes.create(faces).indexes(IndexTarget::rows_of(fluid::node_table));
+    fluid::boundary::surface.create(faces).indexes(IndexTarget::list_of(mesh.surface_names.size()));
   }
   Table& step = store_.add_table(fluid::step_table);
-  for (const char* c : fluid::step_counts) step.add<int64_t>(c, 1);
-  for (const char* c : fluid::step_flags) step.add<uint8_t>(c, 1);
-  for (const char* c : fluid::step_measures) step.add<double>(c, 1);
-  if (spec.adapt) step.add<int64_t>("remeshes", 1);
+  for (const auto& c : fluid::step::counts) c.create(step);
+  for (const auto& c : fluid::step::flags) c.create(step);
+  for (const auto& c : fluid::step::measures) c.create(step);
+  if (spec.adapt) fluid::step::remeshes.create(step);
   step.resize(1);
   store_mesh(mesh);
   use_store_state();
@@ -162,11 +162,10 @@ void FluidModel::build_solver(const TetMesh& mesh) {
 }
 
 void FluidModel::use_store_state() {
-  solver_->use_state({&fluid::node::velocity.column(store_), &fluid::node::previous_velocity.column(store_),
-                      &fluid::node::pressure.column(store_),
-                      &fluid::tet::pressure_matrix_coefficient.column(store_),
-                      &fluid::tet::pressure_subscale.column(store_),
-                      &store_.table(fluid::step_table).column("has_previous")});
+  solver_->use_state(
+      {&fluid::node::velocity.column(store_), &fluid::node::previous_velocity.column(store_),
+       &fluid::node::pressure.column(store_), &fluid::tet::pressure_matrix_coefficient.column(store_),
+       &fluid::tet::pressure_subscale.column(store_), &fluid::step::has_previous.column(store_)});
 }
 
 FluidModel::~FluidModel() = default;
@@ -289,17 +288,17 @@ void FluidModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<st
 }
 
 void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& row) {
-  const Table& step = store_.table(fluid::step_table);
-  auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
-  auto n = [&](const char* c) { return static_cast<double>(step.span<const int64_t>(c)[0]); };
-  row.emplace_back("fluid_picard_iterations", n("picard_iterations"));
-  row.emplace_back("fluid_picard_converged", static_cast<double>(step.span<const uint8_t>("converged")[0]));
-  row.emplace_back("fluid_velocity_iterations", n("velocity_iterations"));
-  row.emplace_back("fluid_schur_iterations", n("schur_iterations"));
-  row.emplace_back("fluid_pressure_iterations", n("pressure_iterations"));
-  row.emplace_back("fluid_divergence_l2", v("divergence_l2"));
-  row.emplace_back("fluid_divergence_max", v("divergence_max"));
-  row.emplace_back("fluid_cfl", v("cfl"));
+  namespace fs = fluid::step;
+  auto v = [&](const ColumnRef<double>& c) { return c.read(store_)[0]; };
+  auto n = [&](const ColumnRef<int64_t>& c) { return static_cast<double>(c.read(store_)[0]); };
+  row.emplace_back("fluid_picard_iterations", n(fs::picard_iterations));
+  row.emplace_back("fluid_picard_converged", static_cast<double>(fs::converged.read(store_)[0]));
+  row.emplace_back("fluid_velocity_iterations", n(fs::velocity_iterations));
+  row.emplace_back("fluid_schur_iterations", n(fs::schur_iterations));
+  row.emplace_back("fluid_pressure_iterations", n(fs::pressure_iterations));
+  row.emplace_back("fluid_divergence_l2", v(fs::divergence_l2));
+  row.emplace_back("fluid_divergence_max", v(fs::divergence_max));
+  row.emplace_back("fluid_cfl", v(fs::cfl));
   row.emplace_back("fluid_kinetic_energy", kinetic_energy());
   const auto u = fluid::node::velocity.in(store_);
   double speed2 = 0.0;
@@ -318,31 +317,31 @@ void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& ro
 }
 
 void FluidModel::summarize(nlohmann::json& summary) const {
-  const Table& step = store_.table(fluid::step_table);
-  auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
-  auto n = [&](const char* c) { return step.span<const int64_t>(c)[0]; };
+  namespace fs = fluid::step;
+  auto v = [&](const ColumnRef<double>& c) { return c.read(store_)[0]; };
+  auto n = [&](const ColumnRef<int64_t>& c) { return c.read(store_)[0]; };
   auto& s = summary["fluid"];
   s["nodes"] = solver_->node_count();
   s["tets"] = solver_->volumes().size();
   if (spec_.adapt) s["remeshes"] = mesh_revision();
   s["dt"] = spec_.dt;
   s["kinetic_energy"] = kinetic_energy();
-  s["picard_failures"] = n("picard_failures");
-  s["max_cfl"] = v("max_cfl");
-  s["max_divergence"] = v("max_divergence");
-  s["last_step"] = {{"picard_iterations", n("picard_iterations")},
-                    {"converged", step.span<const uint8_t>("converged")[0] != 0},
-                    {"velocity_iterations", n("velocity_iterations")},
-                    {"schur_iterations", n("schur_iterations")},
-                    {"pressure_iterations", n("pressure_iterations")},
-                    {"velocity_change", v("velocity_change")},
-                    {"divergence_l2", v("divergence_l2")},
-                    {"divergence_max", v("divergence_max")},
-                    {"cfl", v("cfl")}};
+  s["picard_failures"] = n(fs::picard_failures);
+  s["max_cfl"] = v(fs::max_cfl);
+  s["max_divergence"] = v(fs::max_divergence);
+  s["last_step"] = {{"picard_iterations", n(fs::picard_iterations)},
+                    {"converged", fs::converged.read(store_)[0] != 0},
+                    {"velocity_iterations", n(fs::velocity_iterations)},
+                    {"schur_iterations", n(fs::schur_iterations)},
+                    {"pressure_iterations", n(fs::pressure_iterations)},
+                    {"velocity_change", v(fs::velocity_change)},
+                    {"divergence_l2", v(fs::divergence_l2)},
+                    {"divergence_max", v(fs::divergence_max)},
+                    {"cfl", v(fs::cfl)}};
 }
 
 int64_t FluidModel::mesh_revision() const {
-  return spec_.adapt ? store_.table(fluid::step_table).span<const int64_t>("remeshes")[0] : 0;
+  return spec_.adapt ? fluid::step::remeshes.read(store_)[0] : 0;
 }
 
 // The checkpoint's values are in the fluid tables already, which are the solver's state.

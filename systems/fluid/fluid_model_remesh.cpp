@@ -63,8 +63,8 @@ void FluidModel::store_mesh(const TetMesh& mesh) {
   if (spec_.adapt) {
     Table& faces = store_.table(fluid::boundary_table);
     faces.resize(mesh.triangles.size());
-    auto fn = faces.span<int32_t>("nodes");
-    auto fs = faces.span<int32_t>("surface");
+    auto fn = fluid::boundary::nodes.in(faces);
+    auto fs = fluid::boundary::surface.in(faces);
     for (size_t f = 0; f < mesh.triangles.size(); ++f) {
       std::copy(mesh.triangles[f].begin(), mesh.triangles[f].end(), &fn[3 * f]);
       fs[f] = mesh.triangle_surface[f];
@@ -80,8 +80,8 @@ TetMesh FluidModel::mesh_from_store() const {
   const Table& faces = store_.table(fluid::boundary_table);
   const auto x = fluid::node::x.in(nodes);
   const auto conn = fluid::tet::nodes.in(tets);
-  const auto fn = faces.span<const int32_t>("nodes");
-  const auto fs = faces.span<const int32_t>("surface");
+  const auto fn = fluid::boundary::nodes.read(faces);
+  const auto fs = fluid::boundary::surface.read(faces);
   mesh.nodes.resize(nodes.size());
   for (size_t n = 0; n < nodes.size(); ++n) mesh.nodes[n] = {x[3 * n], x[3 * n + 1], x[3 * n + 2]};
   mesh.tets.resize(tets.size());
@@ -105,7 +105,7 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   const Table& tets = store_.table(fluid::tet_table);
   const std::vector<double> old_x(fluid::node::x.in(nodes).begin(), fluid::node::x.in(nodes).end());
   const std::vector<int32_t> old_tets(fluid::tet::nodes.in(tets).begin(), fluid::tet::nodes.in(tets).end());
-  const bool previous = store_.table(fluid::step_table).span<const uint8_t>("has_previous")[0] != 0;
+  const bool previous = fluid::step::has_previous.read(store_)[0] != 0;
   // Candidate old tets of each new node: zero-size boxes against the old tets' boxes.
   const std::vector<double> points = flat_nodes(mesh);
   const size_t nt_old = old_tets.size() / 4;
@@ -140,7 +140,7 @@ void FluidModel::remesh(const TetMesh& mesh, double time) {
   std::copy(p.begin(), p.end(), fluid::node::pressure.in(out).begin());
   if (previous) std::copy(u_old.begin(), u_old.end(), fluid::node::previous_velocity.in(out).begin());
   solver_->restored(time);
-  store_.table(fluid::step_table).span<int64_t>("remeshes")[0] += 1;
+  fluid::step::remeshes.in(store_)[0] += 1;
 }
 
 }  // namespace rift

@@ -8,14 +8,12 @@
 namespace rift {
 
 Access FluidStepSystem::access() const {
-  using fluid::col;
   Access a;
   a.writes = {fluid::node::velocity.key(), fluid::node::pressure.key(), fluid::node::previous_velocity.key(),
               fluid::tet::pressure_matrix_coefficient.key(), fluid::tet::pressure_subscale.key()};
-  for (const auto& columns :
-       {std::span<const char* const>(fluid::step_counts), std::span<const char* const>(fluid::step_flags),
-        std::span<const char* const>(fluid::step_measures)})
-    for (const char* c : columns) a.writes.push_back(col(fluid::step_table, c));
+  for (const auto& c : fluid::step::counts) a.writes.push_back(c.key());
+  for (const auto& c : fluid::step::flags) a.writes.push_back(c.key());
+  for (const auto& c : fluid::step::measures) a.writes.push_back(c.key());
   a.reads = coupling_reads_;
   return a;
 }
@@ -34,44 +32,43 @@ void FluidStepSystem::advance(double start_time) {
 
 void FluidStepSystem::commit() {
   solver_.commit();
-  Table& step = store_.table(fluid::step_table);
+  namespace fs = fluid::step;
   const fluid::FluidStepReport& r = last_;
-  auto count = [&](const char* c) -> int64_t& { return step.span<int64_t>(c)[0]; };
-  auto measure = [&](const char* c) -> double& { return step.span<double>(c)[0]; };
-  count("picard_iterations") = r.picard_iterations;
-  count("velocity_iterations") = r.velocity_iterations;
-  count("schur_iterations") = r.schur_iterations;
-  count("pressure_iterations") = r.pressure_iterations;
-  count("amg_setups") = r.amg_setups;
-  step.span<uint8_t>("converged")[0] = r.converged ? 1 : 0;
-  measure("velocity_change") = r.velocity_change;
-  measure("pressure_change") = r.pressure_change;
-  measure("divergence_l2") = r.divergence_l2;
-  measure("divergence_max") = r.divergence_max;
-  measure("cfl") = r.cfl;
-  if (!r.converged) count("picard_failures") += 1;
-  double& max_cfl = step.span<double>("max_cfl")[0];
-  double& max_div = step.span<double>("max_divergence")[0];
+  auto value = [&]<class T>(const ColumnRef<T>& c) -> T& { return c.in(store_)[0]; };
+  value(fs::picard_iterations) = r.picard_iterations;
+  value(fs::velocity_iterations) = r.velocity_iterations;
+  value(fs::schur_iterations) = r.schur_iterations;
+  value(fs::pressure_iterations) = r.pressure_iterations;
+  value(fs::amg_setups) = r.amg_setups;
+  value(fs::converged) = r.converged ? 1 : 0;
+  value(fs::velocity_change) = r.velocity_change;
+  value(fs::pressure_change) = r.pressure_change;
+  value(fs::divergence_l2) = r.divergence_l2;
+  value(fs::divergence_max) = r.divergence_max;
+  value(fs::cfl) = r.cfl;
+  if (!r.converged) value(fs::picard_failures) += 1;
+  double& max_cfl = value(fs::max_cfl);
+  double& max_div = value(fs::max_divergence);
   max_cfl = std::max(max_cfl, r.cfl);
   max_div = std::max(max_div, r.divergence_max);
 }
 
 void FluidStepSystem::restore_report() {
-  const Table& step = store_.table(fluid::step_table);
-  auto v = [&](const char* c) { return step.span<const double>(c)[0]; };
-  auto n = [&](const char* c) { return static_cast<int>(step.span<const int64_t>(c)[0]); };
+  namespace fs = fluid::step;
+  auto v = [&](const ColumnRef<double>& c) { return c.read(store_)[0]; };
+  auto n = [&](const ColumnRef<int64_t>& c) { return static_cast<int>(c.read(store_)[0]); };
   fluid::FluidStepReport& r = last_;
-  r.picard_iterations = n("picard_iterations");
-  r.converged = step.span<const uint8_t>("converged")[0] != 0;
-  r.velocity_iterations = n("velocity_iterations");
-  r.schur_iterations = n("schur_iterations");
-  r.pressure_iterations = n("pressure_iterations");
-  r.amg_setups = n("amg_setups");
-  r.velocity_change = v("velocity_change");
-  r.pressure_change = v("pressure_change");
-  r.divergence_l2 = v("divergence_l2");
-  r.divergence_max = v("divergence_max");
-  r.cfl = v("cfl");
+  r.picard_iterations = n(fs::picard_iterations);
+  r.converged = fs::converged.read(store_)[0] != 0;
+  r.velocity_iterations = n(fs::velocity_iterations);
+  r.schur_iterations = n(fs::schur_iterations);
+  r.pressure_iterations = n(fs::pressure_iterations);
+  r.amg_setups = n(fs::amg_setups);
+  r.velocity_change = v(fs::velocity_change);
+  r.pressure_change = v(fs::pressure_change);
+  r.divergence_l2 = v(fs::divergence_l2);
+  r.divergence_max = v(fs::divergence_max);
+  r.cfl = v(fs::cfl);
 }
 
 }  // namespace rift

@@ -1,6 +1,6 @@
 #pragma once
-// Names of the fluid's tables and columns (systems/fluid/fluid_model.hpp), so the system declares access
-// with the same strings the store uses.
+// The fluid's tables and their columns (systems/fluid/fluid_model.hpp), each column declared once as a
+// ColumnRef (engine/core/column_ref.hpp), in the order they are created.
 //
 // fluid_node: x (3, position, fixed), velocity (3), pressure (1): the state after the last step;
 //            previous_velocity (3): the velocity before it (the next step's extrapolated start)
@@ -41,17 +41,35 @@ inline constexpr ColumnRef<double> pressure_matrix_coefficient{tet_table, "press
 inline constexpr ColumnRef<double, 3> pressure_subscale{tet_table, "pressure_subscale"};
 }  // namespace tet
 
-// fluid_step's columns by type (the fluid step writes them all).
-inline constexpr const char* step_counts[] = {"picard_iterations", "velocity_iterations",
-                                              "schur_iterations",  "pressure_iterations",
-                                              "amg_setups",        "picard_failures"};
-inline constexpr const char* step_flags[] = {"converged", "has_previous"};
-inline constexpr const char* step_measures[] = {
-    "velocity_change", "pressure_change", "divergence_l2", "divergence_max", "cfl",
-    "max_cfl",         "max_divergence"};
+namespace boundary {
+inline constexpr ColumnRef<int32_t, 3> nodes{boundary_table, "nodes"};
+inline constexpr ColumnRef<int32_t> surface{boundary_table, "surface"};
+}  // namespace boundary
 
-inline std::string col(const char* table, const char* column) {
-  return std::string(table) + "." + column;
-}
+// fluid_step's columns, by type in the order they are created (the fluid step writes them all).
+namespace step {
+inline constexpr ColumnRef<int64_t> picard_iterations{step_table, "picard_iterations"};
+inline constexpr ColumnRef<int64_t> velocity_iterations{step_table, "velocity_iterations"};
+inline constexpr ColumnRef<int64_t> schur_iterations{step_table, "schur_iterations"};
+inline constexpr ColumnRef<int64_t> pressure_iterations{step_table, "pressure_iterations"};
+inline constexpr ColumnRef<int64_t> amg_setups{step_table, "amg_setups"};
+inline constexpr ColumnRef<int64_t> picard_failures{step_table, "picard_failures"};
+inline constexpr ColumnRef<uint8_t> converged{step_table, "converged"};
+inline constexpr ColumnRef<uint8_t> has_previous{step_table, "has_previous"};
+inline constexpr ColumnRef<double> velocity_change{step_table, "velocity_change"};
+inline constexpr ColumnRef<double> pressure_change{step_table, "pressure_change"};
+inline constexpr ColumnRef<double> divergence_l2{step_table, "divergence_l2"};
+inline constexpr ColumnRef<double> divergence_max{step_table, "divergence_max"};
+inline constexpr ColumnRef<double> cfl{step_table, "cfl"};
+inline constexpr ColumnRef<double> max_cfl{step_table, "max_cfl"};
+inline constexpr ColumnRef<double> max_divergence{step_table, "max_divergence"};
+inline constexpr ColumnRef<int64_t> remeshes{step_table, "remeshes"};  // with fluid.adapt only
+
+inline constexpr ColumnRef<int64_t> counts[] = {picard_iterations,   velocity_iterations, schur_iterations,
+                                                pressure_iterations, amg_setups,          picard_failures};
+inline constexpr ColumnRef<uint8_t> flags[] = {converged, has_previous};
+inline constexpr ColumnRef<double> measures[] = {
+    velocity_change, pressure_change, divergence_l2, divergence_max, cfl, max_cfl, max_divergence};
+}  // namespace step
 
 }  // namespace rift::fluid

@@ -15,7 +15,7 @@ namespace rift {
 // The wet triangles' mid-surfaces from the nodes' current positions; the vertices' volumes (apertures
 // floored), areas and positions; the corner entries' pressure area vectors.
 void FractureFlowSystem::geometry() {
-  const auto x = store_.table(solid::node_table).span<const double>("x");
+  const auto x = solid::node::x.read(store_);
   parallel_for(joints_.size(), kTriangleGrain, [&](size_t begin, size_t end) {
     constexpr size_t ahead = kPrefetchAhead / 4;  // six rows per triangle
     for (size_t t = begin; t < end; ++t) {

@@ -52,9 +52,9 @@ WellWall well_wall(const Store& store, const TetMesh& mesh, const std::vector<st
     chosen[size_t(it - mesh.surface_names.begin())] = 1;
   }
   const Table& nodes = store.table(solid::node_table);
-  const auto node_vertex = nodes.span<const int32_t>("vertex");
-  const auto x0 = nodes.span<const double>("x0");
-  const auto tet_nodes = store.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto node_vertex = solid::node::vertex.read(nodes);
+  const auto x0 = solid::node::x0.read(nodes);
+  const auto tet_nodes = solid::tet::nodes.read(store);
   std::map<std::array<int32_t, 3>, std::pair<size_t, int>> face_of;  // sorted mesh vertices -> tet, corner
   for (size_t t = 0; 4 * t < tet_nodes.size(); ++t)
     for (int k = 0; k < 4; ++k) {
@@ -135,8 +135,8 @@ void FractureFlowModel::metrics(double, std::vector<std::pair<std::string, doubl
 void FractureFlowModel::output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) {
   system_->network_geometry(points_, triangles_, rows_, point_aperture_);
   const Table& rows = store_.table(fracture_flow::vertex_table);
-  const auto pressure = rows.span<const double>("pressure");
-  const auto wetting = rows.span<const double>("wetting_time");
+  const auto pressure = fracture_flow::vertex::pressure.read(rows);
+  const auto wetting = fracture_flow::vertex::wetting_time.read(rows);
   const size_t n = rows_.size();
   point_pressure_.resize(n);
   point_wetting_.resize(n);
@@ -177,7 +177,7 @@ void FractureFlowModel::summarize(nlohmann::json& summary) const {
 
 // Every solid node belongs to one tet (FEMDEM): a wall face's tet is its first corner's.
 std::vector<int32_t> FractureFlowModel::well_wall_tets() const {
-  const auto tet_nodes = store_.table(solid::tet_table).span<const int32_t>("nodes");
+  const auto tet_nodes = solid::tet::nodes.read(store_);
   std::vector<int32_t> tet_of_node(store_.table(solid::node_table).size(), -1);
   for (size_t i = 0; i < tet_nodes.size(); ++i) tet_of_node[size_t(tet_nodes[i])] = int32_t(i / 4);
   const auto& faces = system_->well_wall().face_nodes;

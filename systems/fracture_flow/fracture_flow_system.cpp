@@ -42,8 +42,8 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
       flow_(eos_, spec.viscosity, spec.lag_pressure, network_solver(spec.solver)) {
   // One row per mesh vertex that a joint touches, in vertex order; with a borehole well, the wall's
   // vertices all share one more row, the well's (mesh_vertex -1).
-  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  const auto joint_nodes = solid::joint::nodes.read(store_);
+  const auto node_vertex = solid::node::vertex.read(store_);
   std::vector<int32_t> vertices;
   for (int32_t n : joint_nodes)
     if (!well_is_wall() || !wall_.on_wall[size_t(node_vertex[size_t(n)])])
@@ -58,37 +58,38 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
       if (wall_.on_wall[v]) row_of_mesh_vertex_[v] = int32_t(well_row_);
   }
   Table& rows = store_.add_table(vertex_table);
-  rows.add<int32_t>("mesh_vertex", 1)
-      .indexes(well_is_wall() ? IndexTarget::list_of(vent_vertex.size()).or_none()
-                              : IndexTarget::list_of(vent_vertex.size()));
-  rows.add<double>("pressure", 1);
-  rows.add<double>("mass", 1);
-  rows.add<uint8_t>("role", 1);
-  rows.add<double>("wetting_time", 1);
-  rows.add<double>("exchanged", 1);
-  rows.add<double>("volume", 1);
+  fracture_flow::vertex::mesh_vertex.create(rows).indexes(
+      well_is_wall() ? IndexTarget::list_of(vent_vertex.size()).or_none()
+                     : IndexTarget::list_of(vent_vertex.size()));
+  fracture_flow::vertex::pressure.create(rows);
+  fracture_flow::vertex::mass.create(rows);
+  fracture_flow::vertex::role.create(rows);
+  fracture_flow::vertex::wetting_time.create(rows);
+  fracture_flow::vertex::exchanged.create(rows);
+  fracture_flow::vertex::volume.create(rows);
   rows.resize(vertices.size() + (well_is_wall() ? 1 : 0));
-  std::copy(vertices.begin(), vertices.end(), rows.span<int32_t>("mesh_vertex").begin());
-  if (well_is_wall()) rows.span<int32_t>("mesh_vertex")[well_row_] = -1;
-  auto pressure = rows.span<double>("pressure");
+  std::copy(vertices.begin(), vertices.end(), fracture_flow::vertex::mesh_vertex.in(rows).begin());
+  if (well_is_wall()) fracture_flow::vertex::mesh_vertex.in(rows)[well_row_] = -1;
+  auto pressure = fracture_flow::vertex::pressure.in(rows);
   std::fill(pressure.begin(), pressure.end(), spec_.lag_pressure);
-  auto wetting = rows.span<double>("wetting_time");
+  auto wetting = fracture_flow::vertex::wetting_time.in(rows);
   std::fill(wetting.begin(), wetting.end(), -1.0);
   vent_row_.assign(rows.size(), 0);
   for (size_t r = 0; r < vertices.size(); ++r) vent_row_[r] = vent_vertex[size_t(vertices[r])];
   Table& books = store_.add_table(books_table);
-  for (const char* c :
-       {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work", "initial_mass"})
-    books.add<double>(c, 1);
+  namespace fb = fracture_flow::books;
+  for (const auto& c : {fb::injected, fb::vented, fb::leaked, fb::dissipation, fb::pump_work, fb::fluid_work,
+                        fb::initial_mass})
+    c.create(books);
   // The well's pressure when the surrounding fluid sets it (FractureFlowSpec::pressure_from_fluid): written
   // by the fluid-solid coupling after each fluid step, the fluid's initial pressure until then.
-  if (spec_.pressure_from_fluid) books.add<double>("inlet_pressure", 1);
+  if (spec_.pressure_from_fluid) fracture_flow::books::inlet_pressure.create(books);
   books.resize(1);
-  if (spec_.pressure_from_fluid) books.span<double>("inlet_pressure")[0] = spec_.initial_pressure;
+  if (spec_.pressure_from_fluid) fracture_flow::books::inlet_pressure.in(books)[0] = spec_.initial_pressure;
   Table& joined = store_.add_table(fracture_flow::joint_table);
-  joined.add<int64_t>("joined", 1);
+  fracture_flow::joint::joined.create(joined);
   joined.resize(store_.table(solid::joint_table).size());
-  auto order = joined.span<int64_t>("joined");
+  auto order = fracture_flow::joint::joined.in(joined);
   std::fill(order.begin(), order.end(), -1);
   local_of_row_.assign(rows.size(), -1);
   entry_of_node_.assign(store_.table(solid::node_table).size(), -1);
@@ -107,7 +108,7 @@ void FractureFlowSystem::add_well_wall() {
   wall_entry_.clear();
   wall_x0_.clear();
   wall_entries_ = 0;
-  const auto x0 = store_.table(solid::node_table).span<const double>("x0");
+  const auto x0 = solid::node::x0.read(store_);
   for (int32_t node : wall_.face_nodes) {
     if (entry_of_node_[size_t(node)] < 0) {
       entry_of_node_[size_t(node)] = int32_t(node_.size());
@@ -124,19 +125,22 @@ void FractureFlowSystem::add_well_wall() {
 Access FractureFlowSystem::access() const {
   using solid::col;
   const char* N = solid::node_table;
-  std::vector<std::string> reads{col(N, "inv_mass"), col(N, "free"), col(N, "vertex"),
-                                 col(solid::joint_table, "nodes"), col(solid::event_table, "joint")};
-  if (spec_.wet_damage < 1.0) reads.push_back(col(solid::joint_table, "d_max"));
-  if (well_is_wall()) reads.push_back(col(N, "x0"));
-  if (spec_.pressure_from_fluid) reads.push_back(col(books_table, "inlet_pressure"));
-  reads.push_back(col(books_table, "initial_mass"));
-  std::vector<std::string> writes{col(N, "x"), col(N, "v"), col(N, node_force_column(NodeForceSource::crack)),
-                                  col(solid::energy_table, "external_work")};
-  for (const char* c : {"pressure", "mass", "role", "wetting_time", "exchanged", "volume"})
-    writes.push_back(col(vertex_table, c));
-  writes.push_back(col(fracture_flow::joint_table, "joined"));
-  for (const char* c : {"injected", "vented", "leaked", "dissipation", "pump_work", "fluid_work"})
-    writes.push_back(col(books_table, c));
+  std::vector<std::string> reads{solid::node::inv_mass.key(), solid::node::free.key(),
+                                 solid::node::vertex.key(), solid::joint::nodes.key(),
+                                 solid::event::joint.key()};
+  if (spec_.wet_damage < 1.0) reads.push_back(solid::joint::d_max.key());
+  if (well_is_wall()) reads.push_back(solid::node::x0.key());
+  if (spec_.pressure_from_fluid) reads.push_back(fracture_flow::books::inlet_pressure.key());
+  reads.push_back(fracture_flow::books::initial_mass.key());
+  std::vector<std::string> writes{solid::node::x.key(), solid::node::v.key(),
+                                  col(N, node_force_column(NodeForceSource::crack)),
+                                  solid::energy::external_work.key()};
+  namespace fv = fracture_flow::vertex;
+  namespace fb = fracture_flow::books;
+  writes.insert(writes.end(), {fv::pressure.key(), fv::mass.key(), fv::role.key(), fv::wetting_time.key(),
+                               fv::exchanged.key(), fv::volume.key(), fracture_flow::joint::joined.key(),
+                               fb::injected.key(), fb::vented.key(), fb::leaked.key(), fb::dissipation.key(),
+                               fb::pump_work.key(), fb::fluid_work.key()});
   return {reads, writes};
 }
 
@@ -145,15 +149,15 @@ Access FractureFlowSystem::access() const {
 // recorded (fracture_flow_joint.joined), so the local numbering, and with it every sum, is the same on any
 // thread count and after a restart.
 void FractureFlowSystem::sync_network() {
-  auto joined = store_.table(fracture_flow::joint_table).span<int64_t>("joined");
+  auto joined = fracture_flow::joint::joined.in(store_);
   const size_t before = joints_.size();
-  const auto events = store_.table(solid::event_table).span<const int32_t>("joint");
+  const auto events = solid::event::joint.read(store_);
   for (size_t k = events_seen_; k < events.size(); ++k)
     if (joined[size_t(events[k])] < 0) join(size_t(events[k]));
   events_seen_ = events.size();
   if (spec_.wet_damage < 1.0) {
     const Table& joints = store_.table(solid::joint_table);
-    const auto d_max = joints.span<const double>("d_max");
+    const auto d_max = solid::joint::d_max.read(joints);
     const size_t points = d_max.size() / std::max<size_t>(joints.size(), 1);
     for (size_t j = 0; j < joints.size(); ++j) {
       if (joined[j] >= 0) continue;
@@ -165,14 +169,14 @@ void FractureFlowSystem::sync_network() {
 }
 
 void FractureFlowSystem::join(size_t j) {
-  auto joined = store_.table(fracture_flow::joint_table).span<int64_t>("joined");
+  auto joined = fracture_flow::joint::joined.in(store_);
   joined[j] = int64_t(joints_.size());
   add_triangle(j);
 }
 
 void FractureFlowSystem::add_triangle(size_t j) {
-  const auto joint_nodes = store_.table(solid::joint_table).span<const int32_t>("nodes");
-  const auto node_vertex = store_.table(solid::node_table).span<const int32_t>("vertex");
+  const auto joint_nodes = solid::joint::nodes.read(store_);
+  const auto node_vertex = solid::node::vertex.read(store_);
   joints_.push_back(int32_t(j));
   triangle_nodes_.insert(triangle_nodes_.end(), &joint_nodes[6 * j], &joint_nodes[6 * j] + 6);
   for (int c = 0; c < 3; ++c) {
@@ -218,8 +222,8 @@ void FractureFlowSystem::network_changed() {
   entry_corners_.build(corner_entry_, ne);
   vertex_entries_.build(node_vertex_, nv);
   const Table& nodes = store_.table(solid::node_table);
-  const auto inv_mass = nodes.span<const double>("inv_mass");
-  const auto free = nodes.span<const uint8_t>("free");
+  const auto inv_mass = solid::node::inv_mass.read(nodes);
+  const auto free = solid::node::free.read(nodes);
   for (size_t i = entry_inv_mass_.size(); i < ne; ++i) {
     const size_t n = size_t(node_[i]);
     entry_inv_mass_.push_back(inv_mass[n]);
@@ -277,11 +281,11 @@ void FractureFlowSystem::locate_well() {
 
 void FractureFlowSystem::fill_initial_cracks() {
   Table& rows = store_.table(vertex_table);
-  auto pressure = rows.span<double>("pressure");
-  auto mass = rows.span<double>("mass");
-  auto role = rows.span<uint8_t>("role");
-  auto wetting = rows.span<double>("wetting_time");
-  auto volume = rows.span<double>("volume");
+  auto pressure = fracture_flow::vertex::pressure.in(rows);
+  auto mass = fracture_flow::vertex::mass.in(rows);
+  auto role = fracture_flow::vertex::role.in(rows);
+  auto wetting = fracture_flow::vertex::wetting_time.in(rows);
+  auto volume = fracture_flow::vertex::volume.in(rows);
   const double p0 = spec_.initial_pressure;
   double total = 0.0;
   for (size_t v = 0; v < row_of_local_.size(); ++v) {
@@ -294,7 +298,7 @@ void FractureFlowSystem::fill_initial_cracks() {
     volume[r] = vol;
     total += mass[r];
   }
-  store_.table(books_table).span<double>("initial_mass")[0] = total;
+  fracture_flow::books::initial_mass.in(store_)[0] = total;
   // The faces carry the initial pressure from the first step on.
   auto force = store_.table(solid::node_table).span<double>(node_force_column(NodeForceSource::crack));
   for (size_t i = 0; i < node_.size(); ++i) {
@@ -319,7 +323,7 @@ void FractureFlowSystem::restored() {
   std::fill(entry_of_node_.begin(), entry_of_node_.end(), -1);
   add_well_wall();
   // The checkpoint's network, in the order it was built.
-  const auto joined = store_.table(fracture_flow::joint_table).span<const int64_t>("joined");
+  const auto joined = fracture_flow::joint::joined.read(store_);
   std::vector<std::pair<int64_t, size_t>> order;
   for (size_t j = 0; j < joined.size(); ++j)
     if (joined[j] >= 0) order.emplace_back(joined[j], j);
@@ -328,7 +332,7 @@ void FractureFlowSystem::restored() {
   events_seen_ = store_.table(solid::event_table).size();
   network_changed();
   // Every corner in the checkpoint's network had felt its vertex's pressure (the step before wrote it).
-  const auto pressure = store_.table(vertex_table).span<const double>("pressure");
+  const auto pressure = fracture_flow::vertex::pressure.read(store_);
   for (size_t i = 0; i < node_.size(); ++i)
     felt_[i] = pressure[size_t(row_of_local_[size_t(node_vertex_[i])])];
   geometry();
@@ -346,12 +350,12 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     for (size_t c = 0; c < 3; ++c)
       joining_[size_t(triangles_[3 * t + c])] += area_[t] * aperture_[3 * t + c] / 3.0;
   Table& rows = store_.table(vertex_table);
-  auto pressure = rows.span<double>("pressure");
-  auto mass = rows.span<double>("mass");
-  auto role = rows.span<uint8_t>("role");
-  auto wetting = rows.span<double>("wetting_time");
-  auto exchanged = rows.span<double>("exchanged");
-  auto volume = rows.span<double>("volume");
+  auto pressure = fracture_flow::vertex::pressure.in(rows);
+  auto mass = fracture_flow::vertex::mass.in(rows);
+  auto role = fracture_flow::vertex::role.in(rows);
+  auto wetting = fracture_flow::vertex::wetting_time.in(rows);
+  auto exchanged = fracture_flow::vertex::exchanged.in(rows);
+  auto volume = fracture_flow::vertex::volume.in(rows);
   const size_t nv = row_of_local_.size();
   const size_t w = size_t(local_of_row_[well_row_]);
   for (size_t v = 0; v < nv; ++v) {
@@ -375,7 +379,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     fixed_[w] = (*spec_.pressure)(t_end);
   } else if (spec_.pressure_from_fluid) {
     role_[w] = uint8_t(FlowRole::fixed);
-    fixed_[w] = store_.table(books_table).span<double>("inlet_pressure")[0];
+    fixed_[w] = fracture_flow::books::inlet_pressure.in(store_)[0];
   }
 
   // The closure's compliance, and the pressure the predicted volumes already felt (the compliance-weighted
@@ -442,7 +446,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   const auto wall_pressure = flow_.wall_pressure();
   for (size_t i = 0; i < node_.size(); ++i) now_[i] = wall_pressure[size_t(node_vertex_[i])];
   Table& solid_nodes = store_.table(solid::node_table);
-  const auto x = solid_nodes.span<double>("x"), v = solid_nodes.span<double>("v");
+  const auto x = solid::node::x.in(solid_nodes), v = solid::node::v.in(solid_nodes);
   auto force = solid_nodes.span<double>(node_force_column(NodeForceSource::crack));
   const double correction_work =
       parallel_sum(node_.size(), kEntryGrain, work_blocks_, [&](size_t b, size_t e) {
@@ -455,7 +459,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
         }
         return work;
       });
-  store_.table(solid::energy_table).span<double>("external_work")[0] += correction_work;
+  solid::energy::external_work.in(store_)[0] += correction_work;
 
   double vented = 0.0, fluid_work = 0.0, total = 0.0;
   for (size_t v = 0; v < nv; ++v) {
@@ -475,20 +479,21 @@ void FractureFlowSystem::run(const StepContext& ctx) {
     total += mass_[v];
   }
   const double well_pressure = 0.5 * (previous_pressure_[w] + pressure_[w]);
-  books.span<double>("injected")[0] += injected;
-  books.span<double>("vented")[0] += vented;
-  books.span<double>("leaked")[0] += leaked;
-  books.span<double>("dissipation")[0] += step_books.dissipation;
-  books.span<double>("fluid_work")[0] += fluid_work;
+  fracture_flow::books::injected.in(books)[0] += injected;
+  fracture_flow::books::vented.in(books)[0] += vented;
+  fracture_flow::books::leaked.in(books)[0] += leaked;
+  fracture_flow::books::dissipation.in(books)[0] += step_books.dissipation;
+  fracture_flow::books::fluid_work.in(books)[0] += fluid_work;
   // The pump takes the injected mass from the reference state into the well: it compresses it to the
   // well's pressure (e(p) per unit mass, the compression energy it brings in) and displaces it there,
   // where it takes the volume m / rho(p).
-  books.span<double>("pump_work")[0] +=
+  fracture_flow::books::pump_work.in(books)[0] +=
       injected * (well_pressure / eos_.density(well_pressure) + specific_compression_energy(well_pressure));
   // The mass books: what the network holds is what it started with, plus what came in, less what left.
-  const double in_total = books.span<double>("injected")[0], initial = books.span<double>("initial_mass")[0];
-  const double expected =
-      initial + in_total - books.span<double>("vented")[0] - books.span<double>("leaked")[0];
+  const double in_total = fracture_flow::books::injected.in(books)[0],
+               initial = fracture_flow::books::initial_mass.in(books)[0];
+  const double expected = initial + in_total - fracture_flow::books::vented.in(books)[0] -
+                          fracture_flow::books::leaked.in(books)[0];
   // 1e-12 of the mass involved, or, over a long run, the rounding of the additions to a vertex's mass (one
   // part in 2^52 per step: a large well's mass takes each step's small injection rounded to its own ulp).
   const double scale = std::max({std::abs(total), std::abs(initial), std::abs(in_total)});
@@ -499,8 +504,8 @@ void FractureFlowSystem::run(const StepContext& ctx) {
         "{:.12g} kg "
         "but started with {:.12g}, took in {:.12g}, vented {:.12g} and leaked {:.12g} kg (relative error "
         "{:.3g}, allowed {:.3g}). This is a defect of the flow step; please report it with the scene.",
-        t_end, ctx.step, total, initial, in_total, books.span<double>("vented")[0],
-        books.span<double>("leaked")[0], std::abs(total - expected) / scale, allowed);
+        t_end, ctx.step, total, initial, in_total, fracture_flow::books::vented.in(books)[0],
+        fracture_flow::books::leaked.in(books)[0], std::abs(total - expected) / scale, allowed);
 }
 
 // The work that compressed a unit mass from rho0 to rho(p), the integral of p d(1 / rho) along the
@@ -513,7 +518,7 @@ double FractureFlowSystem::specific_compression_energy(double p) const {
 }
 
 double FractureFlowSystem::total_mass() const {
-  const auto mass = store_.table(vertex_table).span<const double>("mass");
+  const auto mass = fracture_flow::vertex::mass.read(store_);
   double total = 0.0;
   for (int32_t r : row_of_local_) total += mass[size_t(r)];
   return total;
@@ -522,10 +527,10 @@ double FractureFlowSystem::total_mass() const {
 FractureFlowSystem::Measures FractureFlowSystem::measure() const {
   Measures m;
   const Table& rows = store_.table(vertex_table);
-  const auto pressure = rows.span<const double>("pressure");
-  const auto mass = rows.span<const double>("mass");
-  const auto role = rows.span<const uint8_t>("role");
-  const auto volume = rows.span<const double>("volume");
+  const auto pressure = fracture_flow::vertex::pressure.read(rows);
+  const auto mass = fracture_flow::vertex::mass.read(rows);
+  const auto role = fracture_flow::vertex::role.read(rows);
+  const auto volume = fracture_flow::vertex::volume.read(rows);
   m.well_pressure = pressure[well_row_];
   const size_t w = size_t(local_of_row_[well_row_]);
   for (size_t v = 0; v < row_of_local_.size(); ++v) {

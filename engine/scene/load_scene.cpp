@@ -33,6 +33,7 @@ Scene read_scene_tree(ReadContext& ctx, const YamlNode& root, const std::string&
     return scene;
   }
   MapReader doc(ctx, root.kind == YamlNode::Kind::mapping ? &root : nullptr, "", "", top);
+  doc.record_values_at_root();
   MapReader scene_sec = doc.section("scene", true);
   read_scene_section(scene_sec, scene);
   MapReader time = doc.section("time", true);
@@ -156,7 +157,7 @@ SceneLoadResult read_scene_text(const std::string& yaml, const std::string& file
   result.consumed_keys.assign(ctx.consumed_keys().begin(), ctx.consumed_keys().end());
   if (!result.errors.empty()) return result;
   scene.source_file = file_label;
-  scene.resolved_yaml = emit_resolved_yaml(scene);
+  scene.resolved_yaml = emit_resolved_yaml(ctx.resolved());
   scene.hash = scene_hash(scene);
   result.scene = std::move(scene);
   return result;

@@ -74,6 +74,42 @@ std::string MapReader::found(std::string_view key) const {
   return e ? describe_found(e->value) : kMissing;
 }
 
+ResolvedNode& MapReader::ResolvedPlace::get() {
+  if (node) return *node;
+  ResolvedNode& in = parent->get();
+  node = item >= 0 ? &in.entry(key, ResolvedNode::Kind::list).item(static_cast<size_t>(item))
+                   : &in.entry(key, ResolvedNode::Kind::mapping);
+  return *node;
+}
+
+void MapReader::record_values_at_root() {
+  place_ = std::make_shared<ResolvedPlace>();
+  place_->node = &ctx_->resolved();
+}
+
+void MapReader::put(std::string_view key, std::string text) {
+  if (!place_ || silent_ || origin_) return;
+  place_->get().entry(key, ResolvedNode::Kind::scalar).text = std::move(text);
+}
+
+void MapReader::resolved_value(std::string_view key, std::string text) {
+  put(key, std::move(text));
+}
+
+MapReader MapReader::placed(MapReader child, std::string_view key, long item) const {
+  child.place_ = child_place(key, item);
+  return child;
+}
+
+std::shared_ptr<MapReader::ResolvedPlace> MapReader::child_place(std::string_view key, long item) const {
+  if (!place_ || silent_ || origin_) return nullptr;
+  auto p = std::make_shared<ResolvedPlace>();
+  p->parent = place_;
+  p->key = std::string(key);
+  p->item = item;
+  return p;
+}
+
 const YamlEntry* MapReader::lookup(std::string_view key) {
   declare(key);
   return silent_ ? nullptr : find_entry(node_, key);
@@ -130,18 +166,25 @@ double MapReader::real(std::string_view key, const RealRule& rule, std::optional
   const YamlEntry* e = lookup(key);
   if (ctx_->recorder())
     record(key, number_key(rule), !fallback, fallback ? std::optional(json_number(*fallback)) : std::nullopt);
-  if (absent(key, e, !fallback, rule.describe())) return fallback.value_or(0.0);
-  auto v = read_real(*ctx_, e->value, key_path(key), rule);
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(0.0));
+  double out = fallback.value_or(0.0);
+  if (!absent(key, e, !fallback, rule.describe())) {
+    auto v = read_real(*ctx_, e->value, key_path(key), rule);
+    if (!v) failed(key);
+    out = v.value_or(out);
+  }
+  put(key, resolved_real(out));
+  return out;
 }
 
 std::optional<double> MapReader::optional_real(std::string_view key, const RealRule& rule) {
   const YamlEntry* e = lookup(key);
   if (ctx_->recorder()) record(key, number_key(rule, /*nullable=*/true), false, std::nullopt);
-  if (!e || e->value.kind == YamlNode::Kind::null) return std::nullopt;  // null: "not set" on purpose
-  auto v = read_real(*ctx_, e->value, key_path(key), rule);
-  if (!v) failed(key);
+  std::optional<double> v;
+  if (e && e->value.kind != YamlNode::Kind::null) {  // null: "not set" on purpose
+    v = read_real(*ctx_, e->value, key_path(key), rule);
+    if (!v) failed(key);
+  }
+  put(key, v ? resolved_real(*v) : "null");
   return v;
 }
 
@@ -150,20 +193,28 @@ int64_t MapReader::integer(std::string_view key, const IntRule& rule, std::optio
   if (ctx_->recorder())
     record(key, integer_key(rule), !fallback,
            fallback ? std::optional(json_integer(*fallback)) : std::nullopt);
-  if (absent(key, e, !fallback, rule.describe())) return fallback.value_or(0);
-  auto v = read_integer(*ctx_, e->value, key_path(key), rule);
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(0));
+  int64_t out = fallback.value_or(0);
+  if (!absent(key, e, !fallback, rule.describe())) {
+    auto v = read_integer(*ctx_, e->value, key_path(key), rule);
+    if (!v) failed(key);
+    out = v.value_or(out);
+  }
+  put(key, std::to_string(out));
+  return out;
 }
 
 bool MapReader::boolean(std::string_view key, std::optional<bool> fallback) {
   const YamlEntry* e = lookup(key);
   if (ctx_->recorder())
     record(key, boolean_key(), !fallback, fallback ? std::optional(json_boolean(*fallback)) : std::nullopt);
-  if (absent(key, e, !fallback, "true or false")) return fallback.value_or(false);
-  auto v = read_boolean(*ctx_, e->value, key_path(key));
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(false));
+  bool out = fallback.value_or(false);
+  if (!absent(key, e, !fallback, "true or false")) {
+    auto v = read_boolean(*ctx_, e->value, key_path(key));
+    if (!v) failed(key);
+    out = v.value_or(out);
+  }
+  put(key, out ? "true" : "false");
+  return out;
 }
 
 std::string MapReader::string(std::string_view key, std::optional<std::string> fallback, bool allow_empty) {
@@ -171,11 +222,14 @@ std::string MapReader::string(std::string_view key, std::optional<std::string> f
   if (ctx_->recorder())
     record(key, string_key(allow_empty), !fallback,
            fallback ? std::optional(json_string(*fallback)) : std::nullopt);
-  if (absent(key, e, !fallback, allow_empty ? "a string" : "a non-empty string"))
-    return fallback.value_or("");
-  auto v = read_string(*ctx_, e->value, key_path(key), allow_empty);
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(""));
+  std::string out = fallback.value_or("");
+  if (!absent(key, e, !fallback, allow_empty ? "a string" : "a non-empty string")) {
+    auto v = read_string(*ctx_, e->value, key_path(key), allow_empty);
+    if (!v) failed(key);
+    if (v) out = std::move(*v);
+  }
+  put(key, resolved_string(out));
+  return out;
 }
 
 size_t MapReader::choice(std::string_view key, std::span<const std::string_view> options,
@@ -184,10 +238,14 @@ size_t MapReader::choice(std::string_view key, std::span<const std::string_view>
   if (ctx_->recorder())
     record(key, choice_key(options), !fallback,
            fallback ? std::optional(json_string(std::string(options[*fallback]))) : std::nullopt);
-  if (absent(key, e, !fallback, "one of " + join_names(options))) return fallback.value_or(0);
-  auto v = read_choice(*ctx_, e->value, key_path(key), options);
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(0));
+  size_t out = fallback.value_or(0);
+  if (!absent(key, e, !fallback, "one of " + join_names(options))) {
+    auto v = read_choice(*ctx_, e->value, key_path(key), options);
+    if (!v) failed(key);
+    out = v.value_or(out);
+  }
+  if (out < options.size()) put(key, std::string(options[out]));
+  return out;
 }
 
 std::array<double, 3> MapReader::vec3(std::string_view key, const RealRule& rule,
@@ -196,11 +254,14 @@ std::array<double, 3> MapReader::vec3(std::string_view key, const RealRule& rule
   if (ctx_->recorder())
     record(key, vec3_key(rule), !fallback,
            fallback ? std::optional(json_numbers({fallback->begin(), fallback->end()})) : std::nullopt);
-  if (absent(key, e, !fallback, "a list of 3 numbers (x, y, z), each " + rule.describe()))
-    return fallback.value_or(std::array<double, 3>{});
-  auto v = read_vec3(*ctx_, e->value, key_path(key), rule);
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(std::array<double, 3>{}));
+  std::array<double, 3> out = fallback.value_or(std::array<double, 3>{});
+  if (!absent(key, e, !fallback, "a list of 3 numbers (x, y, z), each " + rule.describe())) {
+    auto v = read_vec3(*ctx_, e->value, key_path(key), rule);
+    if (!v) failed(key);
+    out = v.value_or(out);
+  }
+  put(key, resolved_vec3(out.data()));
+  return out;
 }
 
 std::vector<std::string> MapReader::string_list(std::string_view key, std::vector<std::string> fallback) {
@@ -209,21 +270,27 @@ std::vector<std::string> MapReader::string_list(std::string_view key, std::vecto
   if (ctx_->recorder())
     record(key, string_list_key(), fallback.empty(),
            fallback.empty() ? std::nullopt : std::optional(json_strings(fallback)));
-  if (absent(key, e, fallback.empty(), expected)) return fallback;
-  if (e->value.kind != YamlNode::Kind::sequence || e->value.items.empty()) {
-    ctx_->error(e->value.where, key_path(key), expected, describe_found(e->value));
-    failed(key);
-    return fallback;
-  }
-  std::vector<std::string> out;
-  for (size_t i = 0; i < e->value.items.size(); ++i) {
-    auto v = read_string(*ctx_, e->value.items[i], key_path(key) + "[" + std::to_string(i) + "]");
-    if (v)
-      out.push_back(*v);
-    else
+  const std::vector<std::string> result = [&]() -> std::vector<std::string> {
+    if (absent(key, e, fallback.empty(), expected)) return fallback;
+    if (e->value.kind != YamlNode::Kind::sequence || e->value.items.empty()) {
+      ctx_->error(e->value.where, key_path(key), expected, describe_found(e->value));
       failed(key);
-  }
-  return ok(key) ? out : fallback;
+      return fallback;
+    }
+    std::vector<std::string> out;
+    for (size_t i = 0; i < e->value.items.size(); ++i) {
+      auto v = read_string(*ctx_, e->value.items[i], key_path(key) + "[" + std::to_string(i) + "]");
+      if (v)
+        out.push_back(*v);
+      else
+        failed(key);
+    }
+    return ok(key) ? out : fallback;
+  }();
+  std::string text;
+  for (const auto& v : result) text += (text.empty() ? "" : ", ") + resolved_string(v);
+  put(key, "[" + text + "]");
+  return result;
 }
 
 std::vector<size_t> MapReader::choice_list(std::string_view key, std::span<const std::string_view> options,
@@ -235,29 +302,36 @@ std::vector<size_t> MapReader::choice_list(std::string_view key, std::span<const
     for (size_t i : fallback) names.emplace_back(options[i]);
     record(key, choice_list_key(options, min_items), false, json_strings(names));
   }
-  if (absent(key, e, false, expected)) return fallback;
-  if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
-    ctx_->error(e->value.where, key_path(key),
-                expected + (min_items > 0 ? ", at least " + std::to_string(min_items) : ""),
-                describe_found(e->value));
-    failed(key);
-    return fallback;
-  }
-  std::vector<size_t> out;
-  for (size_t i = 0; i < e->value.items.size(); ++i) {
-    const YamlNode& item = e->value.items[i];
-    const std::string item_path = key_path(key) + "[" + std::to_string(i) + "]";
-    auto v = read_choice(*ctx_, item, item_path, options);
-    if (v && std::find(out.begin(), out.end(), *v) != out.end()) {
-      ctx_->error(item.where, item_path, "each name at most once", describe_found(item) + " again");
-      v.reset();
-    }
-    if (v)
-      out.push_back(*v);
-    else
+  const std::vector<size_t> result = [&]() -> std::vector<size_t> {
+    if (absent(key, e, false, expected)) return fallback;
+    if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
+      ctx_->error(e->value.where, key_path(key),
+                  expected + (min_items > 0 ? ", at least " + std::to_string(min_items) : ""),
+                  describe_found(e->value));
       failed(key);
-  }
-  return ok(key) ? out : fallback;
+      return fallback;
+    }
+    std::vector<size_t> out;
+    for (size_t i = 0; i < e->value.items.size(); ++i) {
+      const YamlNode& item = e->value.items[i];
+      const std::string item_path = key_path(key) + "[" + std::to_string(i) + "]";
+      auto v = read_choice(*ctx_, item, item_path, options);
+      if (v && std::find(out.begin(), out.end(), *v) != out.end()) {
+        ctx_->error(item.where, item_path, "each name at most once", describe_found(item) + " again");
+        v.reset();
+      }
+      if (v)
+        out.push_back(*v);
+      else
+        failed(key);
+    }
+    return ok(key) ? out : fallback;
+  }();
+  std::string text;
+  for (size_t i : result)
+    if (i < options.size()) text += (text.empty() ? "" : ", ") + std::string(options[i]);
+  put(key, "[" + text + "]");
+  return result;
 }
 
 TimeFunction MapReader::time_function(std::string_view key, const std::string& unit,
@@ -270,11 +344,14 @@ TimeFunction MapReader::time_function(std::string_view key, const std::string& u
            constant ? std::optional(json_number(fallback->value)) : std::nullopt);
   }
   const std::string in_unit = unit.empty() ? "" : " in " + unit;
-  if (absent(key, e, !fallback, "a time function" + in_unit + " (a number, {ramp: ...} or {table: ...})"))
-    return fallback.value_or(TimeFunction{});
-  auto v = read_time_function(*ctx_, e->value, key_path(key), unit);
-  if (!v) failed(key);
-  return v.value_or(fallback.value_or(TimeFunction{}));
+  TimeFunction out = fallback.value_or(TimeFunction{});
+  if (!absent(key, e, !fallback, "a time function" + in_unit + " (a number, {ramp: ...} or {table: ...})")) {
+    auto v = read_time_function(*ctx_, e->value, key_path(key), unit);
+    if (!v) failed(key);
+    if (v) out = std::move(*v);
+  }
+  put(key, resolved_time_function(out));
+  return out;
 }
 
 MapReader MapReader::section(std::string_view key, bool required, const std::string* doc_path) {
@@ -282,19 +359,20 @@ MapReader MapReader::section(std::string_view key, bool required, const std::str
   const std::string path = key_path(key), doc = doc_path ? *doc_path : join_path(doc_path_, key);
   if (ctx_->recorder()) record(key, section_key(doc), required, std::nullopt);
   if (!e) {
-    if (!required && !silent_) return MapReader(*ctx_, nullptr, path, doc, where_);
+    if (!required && !silent_) return placed(MapReader(*ctx_, nullptr, path, doc, where_), key);
     if (!silent_) ctx_->error(where_, path, "a section (mapping) '" + std::string(key) + "'", kMissing);
     failed(key);
     return silenced(*ctx_, path, doc, where_);
   }
   // Keys missing from the section are reported at the section's own key ("time:"), where it starts.
-  if (e->value.kind == YamlNode::Kind::null) return MapReader(*ctx_, nullptr, path, doc, e->key_where);
+  if (e->value.kind == YamlNode::Kind::null)
+    return placed(MapReader(*ctx_, nullptr, path, doc, e->key_where), key);
   if (e->value.kind != YamlNode::Kind::mapping) {
     ctx_->error(e->value.where, path, "a mapping of keys", describe_found(e->value));
     failed(key);
     return silenced(*ctx_, path, doc, e->key_where);
   }
-  return MapReader(*ctx_, &e->value, path, doc, e->key_where);
+  return placed(MapReader(*ctx_, &e->value, path, doc, e->key_where), key);
 }
 
 std::vector<MapReader> MapReader::section_list(std::string_view key, size_t min_items) {
@@ -305,7 +383,10 @@ std::vector<MapReader> MapReader::section_list(std::string_view key, size_t min_
                                    ? "a list of at least " + std::to_string(min_items) + " mapping(s)"
                                    : "a list of mappings";
   if (origin_) return {silenced(*ctx_, path + "[0]", doc, where_)};  // see unused()
-  if (absent(key, e, min_items > 0, expected)) return {};
+  if (absent(key, e, min_items > 0, expected)) {
+    put(key, "[]");
+    return {};
+  }
   if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
     ctx_->error(e->value.where, path, expected, describe_found(e->value));
     failed(key);
@@ -316,13 +397,14 @@ std::vector<MapReader> MapReader::section_list(std::string_view key, size_t min_
     const YamlNode& item = e->value.items[i];
     const std::string item_path = path + "[" + std::to_string(i) + "]";
     if (item.kind == YamlNode::Kind::mapping) {
-      out.emplace_back(*ctx_, &item, item_path, doc, item.where);
+      out.push_back(placed(MapReader(*ctx_, &item, item_path, doc, item.where), key, static_cast<long>(i)));
     } else {
       ctx_->error(item.where, item_path, "a mapping of keys", describe_found(item));
       failed(key);
       out.push_back(silenced(*ctx_, item_path, doc, item.where));
     }
   }
+  if (out.empty()) put(key, "[]");  // the items record themselves under the key
   return out;
 }
 

@@ -312,7 +312,10 @@ MeshSpec read_mesh_section(MapReader& sec, const std::string& base_dir) {
       sec.integer("max_file_bytes", IntRule{1, INT64_MAX}, static_cast<int64_t>(msh_default_max_bytes)));
   if (has_file) {
     std::string file = sec.string("file", std::nullopt);
-    if (sec.ok("file")) mesh.file = resolve_mesh_file(sec, file, base_dir);
+    if (sec.ok("file")) {
+      mesh.file = resolve_mesh_file(sec, file, base_dir);
+      sec.resolved_value("file", resolved_string(*mesh.file));  // absolute: reads back from anywhere
+    }
     // The content is part of the scene's hash: a restart refuses a mesh file replaced at the same path.
     if (sec.ok("file") && sec.ok("max_file_bytes")) {
       try {

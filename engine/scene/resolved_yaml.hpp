@@ -1,15 +1,18 @@
 #pragma once
-// The complete scene as YAML: every key in schema order, defaults filled, overrides applied, numbers
-// printed so they read back bit-identical. Reading it back gives the same Scene and the same hash, so
-// it is what a run records to say exactly what it ran.
+// The complete scene as YAML: every key the reader read, in reading order, with the value it took (the
+// file's, an override's or the default; resolved_scene.hpp), numbers printed so they read back
+// bit-identical. Reading it back gives the same Scene and the same hash, so it is what a run records to
+// say exactly what it ran.
 #include <string>
 #include <string_view>
 
+#include "engine/scene/resolved_scene.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace rift {
 
-std::string emit_resolved_yaml(const Scene& scene);
+// `read`: what the scene's readers read (ReadContext::resolved).
+std::string emit_resolved_yaml(const ResolvedNode& read);
 
 // FNV-1a 64 of `text` as 16 lowercase hex digits. Identifies a resolved scene; not a security hash.
 std::string fnv1a64_hex(std::string_view text);

@@ -1,7 +1,7 @@
 #pragma once
-// How each enum of the scene is spelt in a scene file. The readers (read_*_section.cpp) and the
-// resolved-YAML writer (resolved_yaml.cpp) both go through these tables; the order of a table is the
-// order the diagnostics and the schema list the options in.
+// How each enum of the scene is spelt in a scene file. The readers (read_*_section.cpp) go through these
+// tables, and the resolved scene records the name they read; the order of a table is the order the
+// diagnostics and the schema list the options in.
 #include <array>
 
 #include "engine/scene/scene.hpp"

@@ -7,6 +7,7 @@
 // every accessor also reports the key's rule (schema_recorder.hpp), from which `rift schema` is made.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <set>
 #include <span>
@@ -14,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/scene/resolved_scene.hpp"
 #include "engine/scene/scene_diagnostic.hpp"
 #include "engine/scene/time_function.hpp"
 #include "engine/scene/yaml_tree.hpp"
@@ -36,9 +38,12 @@ class ReadContext {
   const std::vector<SceneDiagnostic>& errors() const { return errors_; }
   const std::set<std::string>& consumed_keys() const { return consumed_; }
   SchemaRecorder* recorder() const { return recorder_; }  // null: nothing is recorded
+  // What the readers read, value by value (resolved_scene.hpp): the resolved scene.
+  ResolvedNode& resolved() { return resolved_; }
 
  private:
   std::vector<SceneDiagnostic> errors_;
+  ResolvedNode resolved_;
   std::set<std::string> consumed_;
   SchemaRecorder* recorder_ = nullptr;
 };
@@ -82,9 +87,8 @@ std::string describe_found(const YamlNode&);
 // "a, b, c"
 std::string join_names(std::span<const std::string_view> names);
 
-// One value of an enum and its spelling in a scene file: the reader and the resolved-YAML writer both
-// map through the same table (scene_names.hpp), so the two cannot drift apart, and no enum's order
-// matters.
+// One value of an enum and its spelling in a scene file: the reader maps names to values through one
+// table (scene_names.hpp) and the resolved scene records the name read, so no enum's order matters.
 template <class E>
 struct Named {
   E value;
@@ -167,6 +171,11 @@ class MapReader {
   MapReader unused();
   // A diagnostic about the key's value (for checks across keys), found = describe_found(value).
   void error(std::string_view key, std::string expected, std::string hint = {});
+  // Records this mapping's keys as the resolved scene's top level (ReadContext::resolved): the document's
+  // reader. Sections and list items of a recording reader record under their key.
+  void record_values_at_root();
+  // The value a key stands for when it is not the one read (a path made absolute): its resolved text.
+  void resolved_value(std::string_view key, std::string text);
   // Reports keys never asked for (typos) and duplicate keys. Call once, after every key was read.
   void finish();
 
@@ -183,8 +192,24 @@ class MapReader {
   void record(std::string_view key, const KeyRule& rule, bool required,
               std::optional<std::string> default_json);
 
+  // Where this mapping's values go in the resolved scene, made when its first value is recorded, so a
+  // section opened but not read (an absent optional one) leaves no trace.
+  struct ResolvedPlace {
+    std::shared_ptr<ResolvedPlace> parent;
+    std::string key;  // the entry in the parent mapping
+    long item = -1;   // >= 0: item of the parent entry's list
+    ResolvedNode* node = nullptr;
+    ResolvedNode& get();
+  };
+  // Records `text` as the value of `key` (nothing for a silent reader or a view of unused keys).
+  void put(std::string_view key, std::string text);
+  std::shared_ptr<ResolvedPlace> child_place(std::string_view key, long item) const;
+  // `child`, a section or list item read at `key`, recording its values there.
+  MapReader placed(MapReader child, std::string_view key, long item = -1) const;
+
   ReadContext* ctx_;
   const YamlNode* node_;
+  std::shared_ptr<ResolvedPlace> place_;  // null: nothing recorded
   std::string path_, doc_path_;
   SourceLocation where_;
   std::vector<std::string> known_;

@@ -135,8 +135,9 @@ TEST(Probes, ReadTheSolidAtPointsThatMoveWithIt) {
   for (const char* column : {"probe_speed", "probe_moved_0", "probe_moved_1", "probe_sxx"}) {
     const auto it = std::find(names.begin(), names.end(), column);
     ASSERT_NE(it, names.end()) << column;
-    if (std::string(column) == "probe_moved_1")
+    if (std::string(column) == "probe_moved_1") {
       EXPECT_NEAR(std::stod(values[it - names.begin()]), 0.03, 1e-12);
+    }
   }
 }
 

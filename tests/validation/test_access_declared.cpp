@@ -36,7 +36,9 @@ void run_checked(const Case& c) {
   } catch (const Error& e) {
     FAIL() << e.what();
   }
-  if (!c.grown_table.empty()) EXPECT_GT(sim.world().store.table(c.grown_table).size(), 0u) << c.grown_table;
+  if (!c.grown_table.empty()) {
+    EXPECT_GT(sim.world().store.table(c.grown_table).size(), 0u) << c.grown_table;
+  }
 }
 
 TEST(AccessDeclared, SolidScenes) {

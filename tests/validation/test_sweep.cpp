@@ -102,7 +102,9 @@ TEST(Sweep, AHostileSceneNameRunsNoCommand) {
     o.overrides = {"scene.name=" + name};
     const SweepResult r = run_sweep(o);
     EXPECT_EQ(r.rows.at(0).status, "done") << name;
-    if (has_matplotlib()) EXPECT_TRUE(fs::exists(dir / "s/sweep.png")) << name << ": " << r.plot_note;
+    if (has_matplotlib()) {
+      EXPECT_TRUE(fs::exists(dir / "s/sweep.png")) << name << ": " << r.plot_note;
+    }
     EXPECT_FALSE(fs::exists(dir / "owned")) << name;
     EXPECT_FALSE(fs::exists(dir / "s/owned")) << name;
     fs::remove_all(dir / "s");

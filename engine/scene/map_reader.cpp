@@ -265,73 +265,80 @@ std::array<double, 3> MapReader::vec3(std::string_view key, const RealRule& rule
 }
 
 std::vector<std::string> MapReader::string_list(std::string_view key, std::vector<std::string> fallback) {
-  const std::string expected = "a list of at least one non-empty string";
   const YamlEntry* e = lookup(key);
   if (ctx_->recorder())
     record(key, string_list_key(), fallback.empty(),
            fallback.empty() ? std::nullopt : std::optional(json_strings(fallback)));
-  const std::vector<std::string> result = [&]() -> std::vector<std::string> {
-    if (absent(key, e, fallback.empty(), expected)) return fallback;
-    if (e->value.kind != YamlNode::Kind::sequence || e->value.items.empty()) {
-      ctx_->error(e->value.where, key_path(key), expected, describe_found(e->value));
-      failed(key);
-      return fallback;
-    }
-    std::vector<std::string> out;
-    for (size_t i = 0; i < e->value.items.size(); ++i) {
-      auto v = read_string(*ctx_, e->value.items[i], key_path(key) + "[" + std::to_string(i) + "]");
-      if (v)
-        out.push_back(*v);
-      else
-        failed(key);
-    }
-    return ok(key) ? out : fallback;
-  }();
+  std::vector<std::string> out = string_list_value(key, e, std::move(fallback));
   std::string text;
-  for (const auto& v : result) text += (text.empty() ? "" : ", ") + resolved_string(v);
+  for (const auto& v : out) text += (text.empty() ? "" : ", ") + resolved_string(v);
   put(key, "[" + text + "]");
-  return result;
+  return out;
+}
+
+std::vector<std::string> MapReader::string_list_value(std::string_view key, const YamlEntry* e,
+                                                      std::vector<std::string> fallback) {
+  const std::string expected = "a list of at least one non-empty string";
+  if (absent(key, e, fallback.empty(), expected)) return fallback;
+  if (e->value.kind != YamlNode::Kind::sequence || e->value.items.empty()) {
+    ctx_->error(e->value.where, key_path(key), expected, describe_found(e->value));
+    failed(key);
+    return fallback;
+  }
+  std::vector<std::string> out;
+  for (size_t i = 0; i < e->value.items.size(); ++i) {
+    auto v = read_string(*ctx_, e->value.items[i], key_path(key) + "[" + std::to_string(i) + "]");
+    if (v)
+      out.push_back(*v);
+    else
+      failed(key);
+  }
+  return ok(key) ? out : fallback;
 }
 
 std::vector<size_t> MapReader::choice_list(std::string_view key, std::span<const std::string_view> options,
                                            std::vector<size_t> fallback, size_t min_items) {
-  const std::string expected = "a list of distinct names among " + join_names(options);
   const YamlEntry* e = lookup(key);
   if (ctx_->recorder()) {
     std::vector<std::string> names;
     for (size_t i : fallback) names.emplace_back(options[i]);
     record(key, choice_list_key(options, min_items), false, json_strings(names));
   }
-  const std::vector<size_t> result = [&]() -> std::vector<size_t> {
-    if (absent(key, e, false, expected)) return fallback;
-    if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
-      ctx_->error(e->value.where, key_path(key),
-                  expected + (min_items > 0 ? ", at least " + std::to_string(min_items) : ""),
-                  describe_found(e->value));
-      failed(key);
-      return fallback;
-    }
-    std::vector<size_t> out;
-    for (size_t i = 0; i < e->value.items.size(); ++i) {
-      const YamlNode& item = e->value.items[i];
-      const std::string item_path = key_path(key) + "[" + std::to_string(i) + "]";
-      auto v = read_choice(*ctx_, item, item_path, options);
-      if (v && std::find(out.begin(), out.end(), *v) != out.end()) {
-        ctx_->error(item.where, item_path, "each name at most once", describe_found(item) + " again");
-        v.reset();
-      }
-      if (v)
-        out.push_back(*v);
-      else
-        failed(key);
-    }
-    return ok(key) ? out : fallback;
-  }();
+  std::vector<size_t> out = choice_list_value(key, e, options, std::move(fallback), min_items);
   std::string text;
-  for (size_t i : result)
+  for (size_t i : out)
     if (i < options.size()) text += (text.empty() ? "" : ", ") + std::string(options[i]);
   put(key, "[" + text + "]");
-  return result;
+  return out;
+}
+
+std::vector<size_t> MapReader::choice_list_value(std::string_view key, const YamlEntry* e,
+                                                 std::span<const std::string_view> options,
+                                                 std::vector<size_t> fallback, size_t min_items) {
+  const std::string expected = "a list of distinct names among " + join_names(options);
+  if (absent(key, e, false, expected)) return fallback;
+  if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
+    ctx_->error(e->value.where, key_path(key),
+                expected + (min_items > 0 ? ", at least " + std::to_string(min_items) : ""),
+                describe_found(e->value));
+    failed(key);
+    return fallback;
+  }
+  std::vector<size_t> out;
+  for (size_t i = 0; i < e->value.items.size(); ++i) {
+    const YamlNode& item = e->value.items[i];
+    const std::string item_path = key_path(key) + "[" + std::to_string(i) + "]";
+    auto v = read_choice(*ctx_, item, item_path, options);
+    if (v && std::find(out.begin(), out.end(), *v) != out.end()) {
+      ctx_->error(item.where, item_path, "each name at most once", describe_found(item) + " again");
+      v.reset();
+    }
+    if (v)
+      out.push_back(*v);
+    else
+      failed(key);
+  }
+  return ok(key) ? out : fallback;
 }
 
 TimeFunction MapReader::time_function(std::string_view key, const std::string& unit,

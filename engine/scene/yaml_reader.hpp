@@ -204,6 +204,12 @@ class MapReader {
   // Records `text` as the value of `key` (nothing for a silent reader or a view of unused keys).
   void put(std::string_view key, std::string text);
   std::shared_ptr<ResolvedPlace> child_place(std::string_view key, long item) const;
+  // The lists' values as read (the accessors record them).
+  std::vector<std::string> string_list_value(std::string_view key, const YamlEntry* e,
+                                             std::vector<std::string> fallback);
+  std::vector<size_t> choice_list_value(std::string_view key, const YamlEntry* e,
+                                        std::span<const std::string_view> options,
+                                        std::vector<size_t> fallback, size_t min_items);
   // `child`, a section or list item read at `key`, recording its values there.
   MapReader placed(MapReader child, std::string_view key, long item = -1) const;
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "engine/scene/number_text.hpp"
 #include "engine/scene/schema_recorder.hpp"
 #include "engine/scene/suggest.hpp"
 #include "engine/scene/yaml_reader.hpp"
@@ -87,13 +88,13 @@ void MapReader::record_values_at_root() {
   place_->node = &ctx_->resolved();
 }
 
-void MapReader::put(std::string_view key, std::string text) {
-  if (!place_ || silent_ || origin_) return;
-  place_->get().entry(key, ResolvedNode::Kind::scalar).text = std::move(text);
+bool MapReader::records_values() const {
+  return place_ && !silent_ && !origin_;
 }
 
 void MapReader::resolved_value(std::string_view key, std::string text) {
-  put(key, std::move(text));
+  if (!records_values()) return;
+  place_->get().entry(key, ResolvedNode::Kind::scalar).text = std::move(text);
 }
 
 MapReader MapReader::placed(MapReader child, std::string_view key, long item) const {
@@ -102,7 +103,7 @@ MapReader MapReader::placed(MapReader child, std::string_view key, long item) co
 }
 
 std::shared_ptr<MapReader::ResolvedPlace> MapReader::child_place(std::string_view key, long item) const {
-  if (!place_ || silent_ || origin_) return nullptr;
+  if (!records_values()) return nullptr;
   auto p = std::make_shared<ResolvedPlace>();
   p->parent = place_;
   p->key = std::string(key);
@@ -172,7 +173,7 @@ double MapReader::real(std::string_view key, const RealRule& rule, std::optional
     if (!v) failed(key);
     out = v.value_or(out);
   }
-  put(key, resolved_real(out));
+  resolved_value(key, yaml_real(out));
   return out;
 }
 
@@ -184,7 +185,7 @@ std::optional<double> MapReader::optional_real(std::string_view key, const RealR
     v = read_real(*ctx_, e->value, key_path(key), rule);
     if (!v) failed(key);
   }
-  put(key, v ? resolved_real(*v) : "null");
+  resolved_value(key, v ? yaml_real(*v) : "null");
   return v;
 }
 
@@ -199,7 +200,7 @@ int64_t MapReader::integer(std::string_view key, const IntRule& rule, std::optio
     if (!v) failed(key);
     out = v.value_or(out);
   }
-  put(key, std::to_string(out));
+  resolved_value(key, std::to_string(out));
   return out;
 }
 
@@ -213,7 +214,7 @@ bool MapReader::boolean(std::string_view key, std::optional<bool> fallback) {
     if (!v) failed(key);
     out = v.value_or(out);
   }
-  put(key, out ? "true" : "false");
+  resolved_value(key, out ? "true" : "false");
   return out;
 }
 
@@ -228,7 +229,7 @@ std::string MapReader::string(std::string_view key, std::optional<std::string> f
     if (!v) failed(key);
     if (v) out = std::move(*v);
   }
-  put(key, resolved_string(out));
+  resolved_value(key, resolved_string(out));
   return out;
 }
 
@@ -244,7 +245,7 @@ size_t MapReader::choice(std::string_view key, std::span<const std::string_view>
     if (!v) failed(key);
     out = v.value_or(out);
   }
-  if (out < options.size()) put(key, std::string(options[out]));
+  if (out < options.size()) resolved_value(key, std::string(options[out]));
   return out;
 }
 
@@ -260,7 +261,7 @@ std::array<double, 3> MapReader::vec3(std::string_view key, const RealRule& rule
     if (!v) failed(key);
     out = v.value_or(out);
   }
-  put(key, resolved_vec3(out.data()));
+  resolved_value(key, resolved_vec3(out.data()));
   return out;
 }
 
@@ -272,7 +273,7 @@ std::vector<std::string> MapReader::string_list(std::string_view key, std::vecto
   std::vector<std::string> out = string_list_value(key, e, std::move(fallback));
   std::string text;
   for (const auto& v : out) text += (text.empty() ? "" : ", ") + resolved_string(v);
-  put(key, "[" + text + "]");
+  resolved_value(key, "[" + text + "]");
   return out;
 }
 
@@ -308,7 +309,7 @@ std::vector<size_t> MapReader::choice_list(std::string_view key, std::span<const
   std::string text;
   for (size_t i : out)
     if (i < options.size()) text += (text.empty() ? "" : ", ") + std::string(options[i]);
-  put(key, "[" + text + "]");
+  resolved_value(key, "[" + text + "]");
   return out;
 }
 
@@ -357,7 +358,7 @@ TimeFunction MapReader::time_function(std::string_view key, const std::string& u
     if (!v) failed(key);
     if (v) out = std::move(*v);
   }
-  put(key, resolved_time_function(out));
+  resolved_value(key, resolved_time_function(out));
   return out;
 }
 
@@ -391,7 +392,7 @@ std::vector<MapReader> MapReader::section_list(std::string_view key, size_t min_
                                    : "a list of mappings";
   if (origin_) return {silenced(*ctx_, path + "[0]", doc, where_)};  // see unused()
   if (absent(key, e, min_items > 0, expected)) {
-    put(key, "[]");
+    resolved_value(key, "[]");
     return {};
   }
   if (e->value.kind != YamlNode::Kind::sequence || e->value.items.size() < min_items) {
@@ -411,7 +412,7 @@ std::vector<MapReader> MapReader::section_list(std::string_view key, size_t min_
       out.push_back(silenced(*ctx_, item_path, doc, item.where));
     }
   }
-  if (out.empty()) put(key, "[]");  // the items record themselves under the key
+  if (out.empty()) resolved_value(key, "[]");  // the items record themselves under the key
   return out;
 }
 

@@ -42,10 +42,6 @@ std::string resolved_string(std::string_view s) {
   return out + "\"";
 }
 
-std::string resolved_real(double v) {
-  return yaml_real(v);
-}
-
 std::string resolved_vec3(const double v[3]) {
   return "[" + yaml_real(v[0]) + ", " + yaml_real(v[1]) + ", " + yaml_real(v[2]) + "]";
 }

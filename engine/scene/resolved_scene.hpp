@@ -33,7 +33,6 @@ std::string emit_resolved_tree(const ResolvedNode& root);
 
 // Scalar texts for ResolvedNode::text, as the accessors record them.
 std::string resolved_string(std::string_view s);  // always double-quoted: no name reads as a number
-std::string resolved_real(double v);
 std::string resolved_vec3(const double v[3]);
 // A number, {ramp: {value, start_time, rate, limit}} or {table: [[t, v], ...]}.
 std::string resolved_time_function(const TimeFunction& f);

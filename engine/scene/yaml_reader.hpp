@@ -174,7 +174,9 @@ class MapReader {
   // Records this mapping's keys as the resolved scene's top level (ReadContext::resolved): the document's
   // reader. Sections and list items of a recording reader record under their key.
   void record_values_at_root();
-  // The value a key stands for when it is not the one read (a path made absolute): its resolved text.
+  // Records `text` as the resolved value of `key`: every accessor does so with the value it returns, and
+  // a caller sets the value a key stands for when it is not the one read (a path made absolute). Nothing
+  // is recorded by a silent reader or a view of unused keys.
   void resolved_value(std::string_view key, std::string text);
   // Reports keys never asked for (typos) and duplicate keys. Call once, after every key was read.
   void finish();
@@ -201,8 +203,7 @@ class MapReader {
     ResolvedNode* node = nullptr;
     ResolvedNode& get();
   };
-  // Records `text` as the value of `key` (nothing for a silent reader or a view of unused keys).
-  void put(std::string_view key, std::string text);
+  bool records_values() const;  // resolved_value records (a place, not silent, not a view of unused keys)
   std::shared_ptr<ResolvedPlace> child_place(std::string_view key, long item) const;
   // The lists' values as read (the accessors record them).
   std::vector<std::string> string_list_value(std::string_view key, const YamlEntry* e,

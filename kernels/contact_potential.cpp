@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kernels/node_rows.hpp"
+#include "kernels/tet_geometry.hpp"
 #include "kernels/vec3_ops.hpp"
 
 namespace rift::kernels {
@@ -30,14 +31,9 @@ TetGeometry tet_geometry(const double t[4][3]) {
   TetGeometry g;
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k) g.x[i][k] = t[i][k];
-  double e[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) e[i][k] = t[i + 1][k] - t[0][k];
-  double r[3][3];
-  cross(e[1], e[2], r[0]);
-  cross(e[2], e[0], r[1]);
-  cross(e[0], e[1], r[2]);
-  const double det = dot(e[0], r[0]);
+  double e[3][3], r[3][3];
+  tet_edges(t, e);
+  const double det = tet_inverse_rows(e, r);
   g.ok = det != 0.0 && std::isfinite(det);
   const double inv = g.ok ? 1.0 / det : 0.0;
   double sum_c = 0.0;

@@ -3,35 +3,25 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/tet_geometry.hpp"
+
 namespace rift::kernels {
 
 double p1_gradients(const double* x, double* g) {
-  double e[3][3];
-  for (int s = 0; s < 3; ++s)
-    for (int d = 0; d < 3; ++d) e[s][d] = x[3 * (s + 1) + d] - x[d];
-  // Rows of J^-1 (J has the edges e_s as columns) are the gradients of N_1..N_3: cof(J)^T / det.
-  const double c00 = e[1][1] * e[2][2] - e[1][2] * e[2][1];
-  const double c01 = e[1][2] * e[2][0] - e[1][0] * e[2][2];
-  const double c02 = e[1][0] * e[2][1] - e[1][1] * e[2][0];
-  const double det = e[0][0] * c00 + e[0][1] * c01 + e[0][2] * c02;
+  const double* const corner[4] = {x, x + 3, x + 6, x + 9};
+  double e[3][3], rows[3][3];
+  tet_edges(corner, e);
+  // Rows of J^-1 (J has the edges e_s as columns) are the gradients of N_1..N_3 (kernels/tet_geometry.hpp).
+  const double det = tet_inverse_rows(e, rows);
   if (!(det > 0.0)) {
     std::fill(g, g + 12, 0.0);
     return std::isfinite(det) ? det / 6.0 : 0.0;
   }
   const double inv = 1.0 / det;
-  // grad N_1 = (e2 x e3)/det, grad N_2 = (e3 x e1)/det, grad N_3 = (e1 x e2)/det.
-  const auto cross = [](const double* a, const double* b, double* out) {
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-  };
-  cross(e[1], e[2], g + 3);
-  cross(e[2], e[0], g + 6);
-  cross(e[0], e[1], g + 9);
   for (int d = 0; d < 3; ++d) {
-    g[3 + d] *= inv;
-    g[6 + d] *= inv;
-    g[9 + d] *= inv;
+    g[3 + d] = rows[0][d] * inv;
+    g[6 + d] = rows[1][d] * inv;
+    g[9 + d] = rows[2][d] * inv;
     g[d] = -(g[3 + d] + g[6 + d] + g[9 + d]);
   }
   return det / 6.0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "kernels/node_rows.hpp"
+#include "kernels/tet_geometry.hpp"
 #include "kernels/tet_intersection.hpp"
 #include "kernels/tet_point_location.hpp"
 

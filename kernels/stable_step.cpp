@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "kernels/tet_geometry.hpp"
+
 namespace rift::kernels {
 
 namespace {
@@ -12,18 +14,15 @@ namespace {
 // Smallest altitude h = 3V / A_max = |det E| / max |face cross product| (both sides carry the same factor 2).
 // Returns 0 for tets with det E <= 0.
 double smallest_altitude(const double* p[4]) {
-  double e[3][3];  // e[c] = p[c+1] - p[0]
-  for (int c = 0; c < 3; ++c)
-    for (int i = 0; i < 3; ++i) e[c][i] = p[c + 1][i] - p[0][i];
+  double e[3][3];
+  tet_edges(p, e);
   auto cross_norm = [](const double* a, const double* b, const double* c) {
     const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
     return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   };
-  const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                     e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                     e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  const double det = tet_six_volume(e);
   if (!(det > 0.0)) return 0.0;
   const double a_max = std::max({cross_norm(p[1], p[2], p[3]), cross_norm(p[0], p[2], p[3]),
                                  cross_norm(p[0], p[1], p[3]), cross_norm(p[0], p[1], p[2])});
@@ -49,13 +48,12 @@ void for_each_tet_step(std::span<const double> x, std::span<const int32_t> tet_n
 }  // namespace
 
 double tet_highest_omega2(const double c[4][3], const TetMaterial& m, double density) {
-  Eigen::Matrix3d E;
-  for (int i = 0; i < 3; ++i)
-    for (int r = 0; r < 3; ++r) E(r, i) = c[i + 1][r] - c[0][r];
-  if (!(E.determinant() > 0.0)) return 0.0;
-  const Eigen::Matrix3d inv = E.inverse();  // row i: the gradient of corner i + 1's shape function
+  double e[3][3], rows[3][3];
+  tet_edges(c, e);
+  const double det = tet_inverse_rows(e, rows);  // rows / det: the gradients of N_1, N_2, N_3
+  if (!(det > 0.0)) return 0.0;
   Eigen::Vector3d g[4];
-  for (int a = 1; a < 4; ++a) g[a] = inv.row(a - 1).transpose();
+  for (int a = 1; a < 4; ++a) g[a] = Eigen::Vector3d(rows[a - 1][0], rows[a - 1][1], rows[a - 1][2]) / det;
   g[0] = -(g[1] + g[2] + g[3]);
   // M^-1 K_e with m = rho V / 4 on every corner and K_e = V B^T D B: V cancels.
   Eigen::Matrix<double, 12, 12> A;

@@ -182,19 +182,12 @@ double polyhedron_volume(const Polyhedron& P) {
 
 }  // namespace
 
-double tet_volume(const double tet[4][3]) {
-  double e[3][3];
-  for (int k = 0; k < 3; ++k)
-    for (int d = 0; d < 3; ++d) e[k][d] = tet[k + 1][d] - tet[0][d];
-  return std::fabs(det3(e[0], e[1], e[2])) / 6.0;
-}
-
 TetHalfSpaces tet_half_spaces(const double tet[4][3]) {
   TetHalfSpaces h;
   for (int d = 0; d < 3; ++d) h.origin[d] = tet[0][d];
   for (int k = 0; k < 4; ++k)
     for (int d = 0; d < 3; ++d) h.corner[k][d] = tet[k][d] - h.origin[d];
-  const double det = det3(h.corner[1], h.corner[2], h.corner[3]);
+  const double det = tet_six_volume(h.corner + 1);  // corner k is edge k - 1: corner 0 is the origin
   h.volume = std::fabs(det) / 6.0;
   face_planes(h.corner, det < 0.0 ? -1.0 : 1.0, h.normal, h.offset, h.norm);
   for (int d = 0; d < 3; ++d) {
@@ -219,9 +212,8 @@ double clipped_tet_volume(const double a[4][3], const TetHalfSpaces& b) {
   }
   const double D = diag;
   double e[3][3];
-  for (int k = 0; k < 3; ++k)
-    for (int d = 0; d < 3; ++d) e[k][d] = p[k + 1][d] - p[0][d];
-  const double det = det3(e[0], e[1], e[2]);
+  tet_edges(p, e);
+  const double det = tet_six_volume(e);
   if (det == 0.0 || !std::isfinite(det)) return 0.0;
   if (det < 0.0)  // the vertex graph below assumes a positive orientation
     for (int d = 0; d < 3; ++d) std::swap(p[2][d], p[3][d]);

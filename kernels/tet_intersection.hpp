@@ -32,6 +32,8 @@
 // where round-off makes the signs geometrically inconsistent).
 #include <cstddef>
 
+#include "kernels/tet_geometry.hpp"  // tet_volume, for the callers of the intersection
+
 namespace rift::kernels {
 
 // The 4 inner half-spaces of a tet (s(x) = n . (x - origin) - offset >= 0 inside), its corners, volume and
@@ -54,8 +56,5 @@ double clipped_tet_volume(const double a[4][3], const TetHalfSpaces& b);
 
 // |A ∩ B| [m^3] for two tets given by their 4 corners (any order, any orientation).
 double tet_intersection_volume(const double a[4][3], const double b[4][3]);
-
-// Unsigned volume of a tet, |det[x1-x0, x2-x0, x3-x0]| / 6.
-double tet_volume(const double tet[4][3]);
 
 }  // namespace rift::kernels

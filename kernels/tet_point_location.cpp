@@ -2,22 +2,17 @@
 
 #include <algorithm>
 
+#include "kernels/tet_geometry.hpp"
+
 namespace rift::kernels {
 
 void tet_barycentric(const double c[4][3], const double* q, double lambda[4]) {
-  double e[3][3], r[3];
-  for (int d = 0; d < 3; ++d) {
-    for (int a = 0; a < 3; ++a) e[a][d] = c[a + 1][d] - c[0][d];
-    r[d] = q[d] - c[0][d];
-  }
-  auto det3 = [](const double u[3], const double v[3], const double w[3]) {
-    return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-           u[2] * (v[0] * w[1] - v[1] * w[0]);
-  };
-  const double det = det3(e[0], e[1], e[2]);
-  lambda[1] = det3(r, e[1], e[2]) / det;
-  lambda[2] = det3(e[0], r, e[2]) / det;
-  lambda[3] = det3(e[0], e[1], r) / det;
+  // lambda_{s+1} = grad N_{s+1} . (q - x_0), the gradients being the rows of J^-1 (tet_geometry.hpp).
+  double e[3][3], rows[3][3], r[3];
+  tet_edges(c, e);
+  for (int d = 0; d < 3; ++d) r[d] = q[d] - c[0][d];
+  const double det = tet_inverse_rows(e, rows);
+  for (int s = 0; s < 3; ++s) lambda[s + 1] = dot(rows[s], r) / det;
   lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
 }
 

@@ -9,6 +9,7 @@
 
 #include "engine/mesh/tet_faces.hpp"
 #include "engine/schedule/parallel.hpp"
+#include "kernels/tet_geometry.hpp"
 #include "systems/node_force_route.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -24,15 +25,6 @@ using Corners = double[4][3];
 void tet_corners(std::span<const double> x, std::span<const int32_t> tet_nodes, size_t t, Corners& c) {
   for (int k = 0; k < 4; ++k)
     for (int i = 0; i < 3; ++i) c[k][i] = x[3 * tet_nodes[4 * t + k] + i];
-}
-
-double tet_volume(const Corners& c) {
-  const double u[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
-  const double v[3] = {c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]};
-  const double w[3] = {c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2]};
-  return std::abs(u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-                  u[2] * (v[0] * w[1] - v[1] * w[0])) /
-         6.0;
 }
 
 double triangle_area(const double* a, const double* b, const double* c) {
@@ -91,7 +83,7 @@ void ContactSystem::derive_constants(const ContactSpec& spec, std::span<const do
   for (size_t t = 0; t < tets.size(); ++t) {
     Corners c;
     tet_corners(x0, conn, t, c);
-    const double v = tet_volume(c);
+    const double v = kernels::tet_volume(c);
     double a_sum = 0.0;
     for (const auto& f : kTetFaceCorners) a_sum += triangle_area(c[f[0]], c[f[1]], c[f[2]]);
     for (int i = 0; i < 4; ++i)
@@ -182,7 +174,7 @@ void ContactSystem::node_stiffness(std::vector<double>& joint, std::vector<doubl
   auto add_face = [&](std::vector<double>& stiffness, int32_t t, const int32_t corner[3]) {
     Corners c;
     tet_corners(x0, conn, static_cast<size_t>(t), c);
-    const double v = tet_volume(c);
+    const double v = kernels::tet_volume(c);
     if (!(v > 0)) return;
     const double a = triangle_area(c[corner[0]], c[corner[1]], c[corner[2]]);
     const double p = tet_penalty_.empty() ? law_.penalty : tet_penalty_[static_cast<size_t>(t)];
@@ -250,7 +242,7 @@ std::vector<double> matched_contact_penalties(const Store& store, std::span<cons
       const auto t = static_cast<size_t>(jt[2 * j + s]);
       Corners c;
       tet_corners(x0, conn, t, c);
-      const double H = 3.0 * tet_volume(c) / area;
+      const double H = 3.0 * kernels::tet_volume(c) / area;
       if (H > 0) penalty[t] = std::min(penalty[t], p_j * H / (8.0 * std::sqrt(h2)));
     }
   }

@@ -216,9 +216,16 @@ struct SolidSpec {
   std::optional<InitialStressSpec> initial_stress;  // absent: stress-free start
 };
 
-// A fluid boundary condition on a named mesh surface (systems/fluid/fluid_solver.hpp BoundaryKind).
+// A fluid boundary condition on a named mesh surface; the fluid's solver takes Kind as it is
+// (systems/fluid/fluid_solver.hpp BoundaryKind).
 struct FluidBoundarySpec {
-  enum class Kind { no_slip, velocity, free_slip, pressure, outflow };
+  enum class Kind {
+    no_slip,    // u = 0
+    velocity,   // u = velocity(x, t)
+    free_slip,  // u . n = 0, zero tangential traction; the surface must be an axis-aligned plane
+    pressure,   // p = pressure(x, t), mu du/dn = 0 (do-nothing)
+    outflow,    // p = 0, mu du/dn = 0
+  };
   Kind kind = Kind::no_slip;
   std::string surface;
   std::array<double, 3> direction{};  // velocity: the vector [m/s] `function` scales
@@ -241,7 +248,13 @@ struct FluidAdaptSpec {
 
 // Incompressible Navier-Stokes (systems/fluid, docs/fluid.md) on its own mesh.
 struct FluidSpec {
-  enum class Coupling { schur_gmres, projection };
+  // How velocity and pressure are solved together (the solver's PressureCoupling is this enum).
+  enum class Coupling {
+    schur_gmres,  // each Picard iteration solves the linearised stabilised system exactly (FGMRES on the
+                  // pressure Schur complement): robust for any viscosity and dt
+    projection,   // one pressure correction per Picard iteration (iterated incremental projection): cheap,
+                  // converges slowly when mu dt / (rho h^2) >> 1
+  };
   enum class OnPicardFailure { stop, continue_run };
   std::optional<MeshSpec> mesh;         // absent: the top-level mesh
   std::optional<FluidAdaptSpec> adapt;  // absent: the mesh is fixed
@@ -331,7 +344,8 @@ struct FractureFlowSpec {
   // broken joints; below 1, the fluid also enters the process zone ahead of the crack.
   double wet_damage = 1.0;
   // The pressure solve: automatic (factorisation below 2000 network vertices, CG above), direct (the
-  // factorisation), cg (conjugate gradients) (systems/fracture_flow/network_flow.hpp).
+  // factorisation), cg (conjugate gradients); the network's solver takes this enum as it is
+  // (systems/fracture_flow/network_flow.hpp NetworkSolver).
   enum class Solver { automatic, direct, cg };
   Solver solver = Solver::automatic;
   // The well: the crack vertex nearest `point` (within an element of it), given extra storage; or, with

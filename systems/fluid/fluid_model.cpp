@@ -15,34 +15,6 @@ namespace rift {
 
 namespace {
 
-// The scene's names for the solver's enums (each maps by value, so neither's order matters).
-fluid::BoundaryKind solver_kind(FluidBoundarySpec::Kind kind) {
-  using K = FluidBoundarySpec::Kind;
-  switch (kind) {
-    case K::no_slip:
-      return fluid::BoundaryKind::no_slip;
-    case K::velocity:
-      return fluid::BoundaryKind::velocity;
-    case K::free_slip:
-      return fluid::BoundaryKind::free_slip;
-    case K::pressure:
-      return fluid::BoundaryKind::pressure;
-    case K::outflow:
-      return fluid::BoundaryKind::outflow;
-  }
-  throw Error("internal: unknown fluid boundary kind");
-}
-
-fluid::PressureCoupling solver_coupling(FluidSpec::Coupling coupling) {
-  switch (coupling) {
-    case FluidSpec::Coupling::schur_gmres:
-      return fluid::PressureCoupling::schur_gmres;
-    case FluidSpec::Coupling::projection:
-      return fluid::PressureCoupling::projection;
-  }
-  throw Error("internal: unknown fluid coupling");
-}
-
 std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const TetMesh& mesh) {
   std::vector<fluid::FluidBoundary> out;
   for (size_t i = 0; i < spec.boundaries.size(); ++i) {
@@ -53,7 +25,7 @@ std::vector<fluid::FluidBoundary> boundaries_for(const FluidSpec& spec, const Te
                   "; its surfaces are: " + join_names(mesh.surface_names));
     fluid::FluidBoundary fb;
     fb.surface = b.surface;
-    fb.kind = solver_kind(b.kind);
+    fb.kind = b.kind;
     if (b.kind == FluidBoundarySpec::Kind::velocity) {
       // The surface's bounding box, for a parabolic profile.
       std::array<double, 3> lo{}, hi{};
@@ -95,7 +67,7 @@ fluid::FluidSettings settings_for(const FluidSpec& spec) {
   s.convection = spec.convection;
   s.supg = spec.supg;
   s.dynamic_subscale = spec.dynamic_subscale;
-  s.coupling = solver_coupling(spec.coupling);
+  s.coupling = spec.coupling;
   s.picard_max_iterations = spec.picard_max_iterations;
   s.picard_tol = spec.picard_tolerance;
   s.velocity_rel_tol = spec.velocity_tolerance;

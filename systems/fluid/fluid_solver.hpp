@@ -29,6 +29,7 @@
 #include "engine/linear/hypre_pcg.hpp"
 #include "engine/linear/krylov.hpp"
 #include "engine/mesh/tet_mesh.hpp"
+#include "engine/scene/scene.hpp"
 #include "kernels/fluid_subscale.hpp"
 #include "systems/fluid/fluid_assembly.hpp"
 
@@ -38,26 +39,15 @@ using Vec3 = std::array<double, 3>;
 using VectorField = std::function<Vec3(const Vec3& x, double t)>;
 using ScalarField = std::function<double(const Vec3& x, double t)>;
 
-enum class BoundaryKind {
-  no_slip,    // u = 0
-  velocity,   // u = velocity(x, t)
-  free_slip,  // u . n = 0, zero tangential traction; the surface must be an axis-aligned plane
-  pressure,   // p = pressure(x, t), mu du/dn = 0 (do-nothing)
-  outflow,    // p = 0, mu du/dn = 0
-};
+// The scene's enums, so that a scene's name maps to the solver's value in one place (the reader).
+using BoundaryKind = FluidBoundarySpec::Kind;
+using PressureCoupling = FluidSpec::Coupling;
 
 struct FluidBoundary {
   std::string surface;
   BoundaryKind kind = BoundaryKind::no_slip;
   VectorField velocity;  // kind == velocity
   ScalarField pressure;  // kind == pressure
-};
-
-enum class PressureCoupling {
-  schur_gmres,  // each Picard iteration solves the linearised stabilised system exactly (FGMRES on the
-                // pressure Schur complement, preconditioned as below): robust for any viscosity and dt
-  projection,   // one pressure correction per Picard iteration (iterated incremental projection): cheap,
-                // converges slowly when mu dt / (rho h^2) >> 1
 };
 
 struct FluidSettings {

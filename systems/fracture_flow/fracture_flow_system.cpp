@@ -13,21 +13,6 @@
 #include "systems/solid_tables.hpp"
 
 namespace rift {
-namespace {
-
-NetworkSolver network_solver(FractureFlowSpec::Solver solver) {
-  switch (solver) {
-    case FractureFlowSpec::Solver::automatic:
-      return NetworkSolver::automatic;
-    case FractureFlowSpec::Solver::direct:
-      return NetworkSolver::direct;
-    case FractureFlowSpec::Solver::cg:
-      return NetworkSolver::cg;
-  }
-  throw Error("internal: unknown fracture_flow.solver");
-}
-
-}  // namespace
 
 using fracture_flow::books_table;
 using fracture_flow::vertex_table;
@@ -39,7 +24,7 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
       eos_{spec.density, spec.reference_pressure, spec.bulk_modulus},
       mass_damping_(std::move(mass_damping)),
       wall_(std::move(wall)),
-      flow_(eos_, spec.viscosity, spec.lag_pressure, network_solver(spec.solver)) {
+      flow_(eos_, spec.viscosity, spec.lag_pressure, spec.solver) {
   // One row per mesh vertex that a joint touches, in vertex order; with a borehole well, the wall's
   // vertices all share one more row, the well's (mesh_vertex -1).
   const auto joint_nodes = solid::joint::nodes.read(store_);

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/scene/scene.hpp"
 #include "kernels/fracture_flow.hpp"
 
 namespace rift {
@@ -72,7 +73,7 @@ struct NetworkFlowBooks {
 // relative residual of 1e-10; 0.7 ms at 1e4 triangles; an incomplete Cholesky preconditioner cost more to
 // build each step than it saved); `automatic` takes the factorisation below kDirectVertices vertices and CG
 // above. Mass is conserved either way (the fluxes of the solution are applied to both ends of each edge).
-enum class NetworkSolver { automatic, direct, cg };
+using NetworkSolver = FractureFlowSpec::Solver;  // the scene's enum: its names map in the reader
 
 class NetworkFlow {
  public:

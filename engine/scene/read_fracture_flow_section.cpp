@@ -9,10 +9,10 @@ namespace rift {
 
 FractureFlowSpec read_fracture_flow_section(MapReader& f, bool pressure_from_fluid) {
   FractureFlowSpec spec;
-  spec.density = f.real("density", positive("kg/m^3"), 1000.0);
+  spec.eos.density0 = f.real("density", positive("kg/m^3"), 1000.0);
   spec.viscosity = f.real("viscosity", non_negative("Pa s"), 1.0e-3);
-  spec.bulk_modulus = f.real("bulk_modulus", positive("Pa"), 2.2e9);
-  spec.reference_pressure = f.real("reference_pressure", any_real("Pa"), 0.0);
+  spec.eos.bulk_modulus = f.real("bulk_modulus", positive("Pa"), 2.2e9);
+  spec.eos.pressure0 = f.real("reference_pressure", any_real("Pa"), 0.0);
   spec.aperture_floor = f.real("aperture_floor", positive("m"), 1.0e-6);
   spec.lag_pressure = f.real("lag_pressure", any_real("Pa"), 0.0);
   spec.initial_pressure = f.real("initial_pressure", any_real("Pa"), 0.0);
@@ -21,7 +21,7 @@ FractureFlowSpec read_fracture_flow_section(MapReader& f, bool pressure_from_flu
       f.choice("solver", scene_names::kNetworkSolver, std::optional(FractureFlowSpec::Solver::automatic));
   spec.wet_damage = f.real("wet_damage", RealRule{"", 0.0, 1.0, true, false}, 1.0);
   if (f.ok("lag_pressure") && f.ok("bulk_modulus") && f.ok("reference_pressure") &&
-      !(spec.lag_pressure > spec.reference_pressure - spec.bulk_modulus))
+      !(spec.lag_pressure > spec.eos.pressure0 - spec.eos.bulk_modulus))
     f.error("lag_pressure", "a pressure above reference_pressure - bulk_modulus (where the density is zero)");
   MapReader well = f.section("injection", true);
   spec.point = well.vec3("point", any_real("m"), std::nullopt);

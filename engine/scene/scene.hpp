@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/scene/time_function.hpp"
+#include "kernels/fracture_flow.hpp"  // FluidEos
 
 namespace rift {
 
@@ -332,14 +333,14 @@ struct FluidSolidSpec {
 // slightly compressible fluid on the crack network (broken joints and initial cracks), injected at a
 // well. Needs solid.fracture; not with solid.fracture.crack_pressure (the prescribed limit of this flow).
 struct FractureFlowSpec {
-  double density = 1000.0;          // rho0 [kg/m^3] at reference_pressure
-  double viscosity = 1.0e-3;        // mu [Pa s]; 0: zero-viscosity mode (one pressure per connected crack)
-  double bulk_modulus = 2.2e9;      // K_f [Pa]
-  double reference_pressure = 0.0;  // p0 [Pa]: rho(p0) = rho0
-  double aperture_floor = 1.0e-6;   // [m]: hydraulic aperture and storage never below it
-  double lag_pressure = 0.0;        // [Pa]: held by crack regions the fluid has not reached
-  double initial_pressure = 0.0;    // [Pa]: the fluid filling the initial cracks at t = 0
-  int64_t interval = 1;             // solid steps per flow solve (in between: each vertex on its own)
+  // The equation of state as the kernels take it: density (rho0 [kg/m^3] at reference_pressure),
+  // reference_pressure (p0 [Pa]) and bulk_modulus (K_f [Pa]) are read straight into it.
+  kernels::FluidEos eos{1000.0, 0.0, 2.2e9};
+  double viscosity = 1.0e-3;       // mu [Pa s]; 0: zero-viscosity mode (one pressure per connected crack)
+  double aperture_floor = 1.0e-6;  // [m]: hydraulic aperture and storage never below it
+  double lag_pressure = 0.0;       // [Pa]: held by crack regions the fluid has not reached
+  double initial_pressure = 0.0;   // [Pa]: the fluid filling the initial cracks at t = 0
+  int64_t interval = 1;            // solid steps per flow solve (in between: each vertex on its own)
   // A joint joins the network when its damage (the largest D_max of its points) reaches this: 1, only
   // broken joints; below 1, the fluid also enters the process zone ahead of the crack.
   double wet_damage = 1.0;

@@ -109,13 +109,13 @@ void FractureFlowModel::metrics(double, std::vector<std::pair<std::string, doubl
   const FractureFlowSystem::Measures m = system_->measure();
   const Table& books = store_.table(fracture_flow::books_table);
   auto book = [&](const char* c) { return books.span<const double>(c)[0]; };
-  const double injected_volume = book("injected") / spec_.density;
+  const double injected_volume = book("injected") / spec_.eos.density0;
   row.emplace_back("flow_well_pressure", m.well_pressure);
   row.emplace_back("flow_injected_volume", injected_volume);
   row.emplace_back("flow_fluid_volume", m.fluid_volume);
   row.emplace_back("flow_crack_volume", m.crack_volume);
-  row.emplace_back("flow_vented_volume", book("vented") / spec_.density);
-  row.emplace_back("flow_leaked_volume", book("leaked") / spec_.density);
+  row.emplace_back("flow_vented_volume", book("vented") / spec_.eos.density0);
+  row.emplace_back("flow_leaked_volume", book("leaked") / spec_.eos.density0);
   row.emplace_back("flow_crack_area", m.crack_area);
   row.emplace_back("flow_wet_area", m.wet_area);
   row.emplace_back("flow_crack_extent", m.crack_extent);
@@ -167,7 +167,7 @@ void FractureFlowModel::summarize(nlohmann::json& summary) const {
   const Table& books = store_.table(fracture_flow::books_table);
   auto book = [&](const char* c) { return books.span<const double>(c)[0]; };
   summary["fracture_flow"] = {
-      {"well_pressure", m.well_pressure},    {"injected_volume", book("injected") / spec_.density},
+      {"well_pressure", m.well_pressure},    {"injected_volume", book("injected") / spec_.eos.density0},
       {"crack_volume", m.crack_volume},      {"fluid_volume", m.fluid_volume},
       {"crack_area", m.crack_area},          {"wet_area", m.wet_area},
       {"crack_extent", m.crack_extent},      {"front_extent", m.front_extent},

@@ -21,7 +21,7 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
                                        std::vector<uint8_t> vent_vertex, WellWall wall)
     : store_(store),
       spec_(spec),
-      eos_{spec.density, spec.reference_pressure, spec.bulk_modulus},
+      eos_(spec.eos),
       mass_damping_(std::move(mass_damping)),
       wall_(std::move(wall)),
       flow_(eos_, spec.viscosity, spec.lag_pressure, spec.solver) {
@@ -385,7 +385,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   Table& books = store_.table(books_table);
   double injected = 0.0, leaked = 0.0;
   if (spec_.rate) {
-    injected = ctx.dt * spec_.density * (*spec_.rate)(ctx.time + 0.5 * ctx.dt);
+    injected = ctx.dt * spec_.eos.density0 * (*spec_.rate)(ctx.time + 0.5 * ctx.dt);
     mass_[w] += injected;
   }
   if (spec_.leak_off > 0.0 || spec_.spurt > 0.0)
@@ -496,10 +496,10 @@ void FractureFlowSystem::run(const StepContext& ctx) {
 // The work that compressed a unit mass from rho0 to rho(p), the integral of p d(1 / rho) along the
 // equation of state: (K_f / rho0) [ln(1 + x) + 1 / (1 + x) - 1] + p0 x / (rho0 (1 + x)), x = (p - p0) / K_f.
 double FractureFlowSystem::specific_compression_energy(double p) const {
-  const double x = (p - spec_.reference_pressure) / spec_.bulk_modulus;
-  return (spec_.bulk_modulus * (std::log1p(x) + 1.0 / (1.0 + x) - 1.0) +
-          spec_.reference_pressure * x / (1.0 + x)) /
-         spec_.density;
+  const double x = (p - spec_.eos.pressure0) / spec_.eos.bulk_modulus;
+  return (spec_.eos.bulk_modulus * (std::log1p(x) + 1.0 / (1.0 + x) - 1.0) +
+          spec_.eos.pressure0 * x / (1.0 + x)) /
+         spec_.eos.density0;
 }
 
 double FractureFlowSystem::total_mass() const {
@@ -521,7 +521,7 @@ FractureFlowSystem::Measures FractureFlowSystem::measure() const {
   for (size_t v = 0; v < row_of_local_.size(); ++v) {
     const size_t r = size_t(row_of_local_[v]);
     m.crack_volume += volume[r];
-    m.fluid_volume += mass[r] / spec_.density;
+    m.fluid_volume += mass[r] / spec_.eos.density0;
     m.compression_energy += mass[r] * specific_compression_energy(pressure[r]);
     double d2 = 0.0;
     for (int d = 0; d < 3; ++d)

@@ -268,7 +268,7 @@ void SolidToFluidSystem::exchange() {
     network_sink();
     mark_network_cells();
   }
-  restore_solver();
+  bind_solver_inputs();
 
   Table& state = store_.table(coupling::state_table);
   double covered = 0.0;
@@ -341,7 +341,7 @@ void SolidToFluidSystem::mark_network_cells() {
   for (int32_t k : pairs_.inlet_cells) owned[size_t(k)] = 0.0;
 }
 
-void SolidToFluidSystem::restore_solver() {
+void SolidToFluidSystem::bind_solver_inputs() {
   const Table& ft = store_.table(fluid::tet_table);
   solver_.read_coupling_inputs(
       coupling::cell::absorption.in(ft), coupling::cell::solid_velocity.in(ft),

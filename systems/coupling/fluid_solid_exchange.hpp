@@ -72,7 +72,7 @@ class SolidToFluidSystem : public System {
   void fluid_mesh_changed();
   // Points the solver at the stored absorption, solid velocity and dilatation (it reads them in place) and
   // derives its continuity weights: after each exchange, a remesh and a restart.
-  void restore_solver();
+  void bind_solver_inputs();
   // fluid_solid.network_inlet: the solid tets on the network's well (the notch). At every exchange they
   // mark, with the tets of the broken joints, the fluid cells the network owns (fluid_tet.network_cell):
   // those whose centre lies in the solid's box at t = 0 (the rock's envelope: its notch and cracks

@@ -92,7 +92,7 @@ FluidSolidModel::~FluidSolidModel() = default;
 
 void FluidSolidModel::restored(const StepContext&) {
   if (adapter_) fluid_mesh_changed();  // the fluid model rebuilt its solver on the checkpoint's mesh
-  to_fluid_->restore_solver();
+  to_fluid_->bind_solver_inputs();
   if (concurrent_) to_fluid_->rebuild_pairs(coupling::solid_node::x_at_exchange.in(store_));
 }
 

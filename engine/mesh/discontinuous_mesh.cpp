@@ -1,7 +1,6 @@
 #include "engine/mesh/discontinuous_mesh.hpp"
 
 #include <algorithm>
-#include <unordered_map>
 
 #include "engine/core/error.hpp"
 #include "engine/mesh/tet_faces.hpp"
@@ -39,36 +38,24 @@ DiscontinuousMesh make_discontinuous(const TetMesh& mesh, const std::function<bo
       out.node_vertex.push_back(v);
     }
 
-  // Pair the faces: the first tet to show a face waits in the map for the second.
-  std::unordered_map<FaceKey, std::pair<int32_t, int32_t>, FaceKeyHash> open_faces;  // (tet, face)
-  open_faces.reserve(2 * nt);
-  for (size_t e = 0; e < nt; ++e)
-    for (int f = 0; f < 4; ++f) {
-      std::array<int32_t, 3> v;
-      for (int i = 0; i < 3; ++i) v[i] = mesh.tets[e][kTetFaceCorners[f][i]];
-      const FaceKey key = face_key(v);
-      auto it = open_faces.find(key);
-      if (it == open_faces.end()) {
-        open_faces.emplace(key, std::make_pair(static_cast<int32_t>(e), f));
-        continue;
-      }
-      const auto [a, fa] = it->second;
-      open_faces.erase(it);
-      if (!out.tet_in_zone[a] && !out.tet_in_zone[e]) continue;
-      // Corners 0-2: tet A's face reversed; 3-5: the copies in tet B of the same vertices.
-      std::array<int32_t, 6> joint;
-      for (int i = 0; i < 3; ++i) {
-        const int corner = kTetFaceCorners[fa][2 - i];
-        joint[i] = out.tets[a][corner];
-        const int32_t vertex = mesh.tets[a][corner];
-        int kb = 0;
-        while (mesh.tets[e][kb] != vertex) ++kb;
-        joint[3 + i] = out.tets[e][kb];
-      }
-      out.joints.push_back(joint);
-      out.joint_tets.push_back({a, static_cast<int32_t>(e)});
-      out.joint_faces.push_back({fa, f});
-    }
+  // A joint on each face two tets share, one of them in the fracture zone.
+  const OpenFaces open_faces =
+      for_each_shared_face(mesh.tets, [&](int32_t a, int32_t fa, int32_t e, int32_t f) {
+        if (!out.tet_in_zone[size_t(a)] && !out.tet_in_zone[size_t(e)]) return;
+        // Corners 0-2: tet A's face reversed; 3-5: the copies in tet B of the same vertices.
+        std::array<int32_t, 6> joint;
+        for (int i = 0; i < 3; ++i) {
+          const int corner = kTetFaceCorners[fa][2 - i];
+          joint[i] = out.tets[a][corner];
+          const int32_t vertex = mesh.tets[a][corner];
+          int kb = 0;
+          while (mesh.tets[e][kb] != vertex) ++kb;
+          joint[3 + i] = out.tets[e][kb];
+        }
+        out.joints.push_back(joint);
+        out.joint_tets.push_back({a, static_cast<int32_t>(e)});
+        out.joint_faces.push_back({fa, f});
+      });
 
   // Boundary triangles onto the copies of the tet they bound (the faces still open).
   out.triangles.resize(mesh.triangles.size());

@@ -5,6 +5,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace rift {
 
@@ -26,6 +29,29 @@ struct FaceKeyHash {
 inline FaceKey face_key(std::array<int32_t, 3> v) {
   std::sort(v.begin(), v.end());
   return {v};
+}
+
+// The faces of a single tet (the boundary), each as (tet, face).
+using OpenFaces = std::unordered_map<FaceKey, std::pair<int32_t, int32_t>, FaceKeyHash>;
+
+// Calls shared(a, face_a, b, face_b) for every face that two tets share (a < b, faces as in
+// kTetFaceCorners), in the order in which the second tet meets it: the first tet to show a face waits in a
+// map for the second. Returns the faces left waiting: the boundary's.
+template <class Shared>
+OpenFaces for_each_shared_face(const std::vector<std::array<int32_t, 4>>& tets, Shared&& shared) {
+  OpenFaces open;
+  open.reserve(2 * tets.size());
+  for (size_t e = 0; e < tets.size(); ++e)
+    for (int32_t f = 0; f < 4; ++f) {
+      std::array<int32_t, 3> v;
+      for (int i = 0; i < 3; ++i) v[size_t(i)] = tets[e][size_t(kTetFaceCorners[f][i])];
+      const auto [it, inserted] = open.try_emplace(face_key(v), int32_t(e), f);
+      if (inserted) continue;
+      const auto [a, fa] = it->second;
+      open.erase(it);
+      shared(a, fa, int32_t(e), f);
+    }
+  return open;
 }
 
 }  // namespace rift

@@ -4,7 +4,6 @@
 #include <metis.h>
 
 #include <algorithm>
-#include <unordered_map>
 
 #include "engine/core/error.hpp"
 #include "engine/mesh/tet_faces.hpp"
@@ -13,22 +12,12 @@ namespace rift {
 
 TetDualGraph tet_dual_graph(const TetMesh& mesh) {
   const size_t n = mesh.tets.size();
-  // Each face's first tet and local face; the second tet to meet it closes the pair.
+  // The tet across each face (-1: the boundary).
   std::vector<std::array<int32_t, 4>> across(n, {-1, -1, -1, -1});
-  std::unordered_map<FaceKey, int64_t, FaceKeyHash> open;
-  open.reserve(2 * n);
-  for (size_t t = 0; t < n; ++t)
-    for (int f = 0; f < 4; ++f) {
-      const auto& c = kTetFaceCorners[f];
-      const FaceKey key =
-          face_key({mesh.tets[t][size_t(c[0])], mesh.tets[t][size_t(c[1])], mesh.tets[t][size_t(c[2])]});
-      const auto [it, inserted] = open.try_emplace(key, int64_t(4 * t + size_t(f)));
-      if (inserted) continue;
-      const int64_t other = it->second;
-      across[t][size_t(f)] = int32_t(other / 4);
-      across[size_t(other / 4)][size_t(other % 4)] = int32_t(t);
-      open.erase(it);
-    }
+  for_each_shared_face(mesh.tets, [&](int32_t a, int32_t fa, int32_t b, int32_t fb) {
+    across[size_t(a)][size_t(fa)] = b;
+    across[size_t(b)][size_t(fb)] = a;
+  });
   TetDualGraph g;
   g.start.assign(n + 1, 0);
   for (size_t t = 0; t < n; ++t) {

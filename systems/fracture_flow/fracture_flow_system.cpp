@@ -21,10 +21,9 @@ FractureFlowSystem::FractureFlowSystem(Store& store, const FractureFlowSpec& spe
                                        std::vector<uint8_t> vent_vertex, WellWall wall)
     : store_(store),
       spec_(spec),
-      eos_(spec.eos),
       mass_damping_(std::move(mass_damping)),
       wall_(std::move(wall)),
-      flow_(eos_, spec.viscosity, spec.lag_pressure, spec.solver) {
+      flow_(spec.eos, spec.viscosity, spec.lag_pressure, spec.solver) {
   // One row per mesh vertex that a joint touches, in vertex order; with a borehole well, the wall's
   // vertices all share one more row, the well's (mesh_vertex -1).
   const auto joint_nodes = solid::joint::nodes.read(store_);
@@ -277,7 +276,7 @@ void FractureFlowSystem::fill_initial_cracks() {
     const size_t r = size_t(row_of_local_[v]);
     const double vol = volume_[v] + (r == well_row_ ? spec_.well_volume : 0.0);
     pressure[r] = p0;
-    mass[r] = eos_.density(p0) * vol;
+    mass[r] = spec_.eos.density(p0) * vol;
     role[r] = uint8_t(FlowRole::wet);
     wetting[r] = 0.0;
     volume[r] = vol;
@@ -397,7 +396,7 @@ void FractureFlowSystem::run(const StepContext& ctx) {
       double lost = faces * 2.0 * spec_.leak_off *
                     (std::sqrt(t_end - wetting_[v]) - std::sqrt(std::max(ctx.time - wetting_[v], 0.0)));
       if (wetting_[v] > ctx.time - ctx.dt && wetting_[v] <= ctx.time) lost += faces * spec_.spurt;
-      const double dm = std::min(eos_.density(pressure_[v]) * lost, mass_[v]);
+      const double dm = std::min(spec_.eos.density(pressure_[v]) * lost, mass_[v]);
       mass_[v] -= dm;
       leaked += dm;
     }
@@ -473,7 +472,8 @@ void FractureFlowSystem::run(const StepContext& ctx) {
   // well's pressure (e(p) per unit mass, the compression energy it brings in) and displaces it there,
   // where it takes the volume m / rho(p).
   fracture_flow::books::pump_work.in(books)[0] +=
-      injected * (well_pressure / eos_.density(well_pressure) + specific_compression_energy(well_pressure));
+      injected *
+      (well_pressure / spec_.eos.density(well_pressure) + specific_compression_energy(well_pressure));
   // The mass books: what the network holds is what it started with, plus what came in, less what left.
   const double in_total = fracture_flow::books::injected.in(books)[0],
                initial = fracture_flow::books::initial_mass.in(books)[0];

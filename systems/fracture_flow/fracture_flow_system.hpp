@@ -85,7 +85,6 @@ class FractureFlowSystem : public System {
 
   Store& store_;
   FractureFlowSpec spec_;
-  kernels::FluidEos eos_;
   TimeFunction mass_damping_;
   WellWall wall_;
   std::vector<uint8_t> vent_row_;         // 1 per vertex row: on a vent surface

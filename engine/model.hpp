@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/io/xdmf_series.hpp"
+#include "engine/mesh/halo_plan.hpp"
 #include "engine/schedule/system.hpp"
 
 namespace rift {
@@ -36,6 +37,10 @@ class Model {
   virtual void summarize(nlohmann::json& summary) const {}
   // Logs beside the time series (e.g. the fracture log), written atomically whenever it is.
   virtual void write_logs(const std::filesystem::path& dir) const {}
+
+  // Splitting the run across processes (engine/mesh/halo_plan.hpp): the work of each tet of the run's
+  // mesh, and the elements this model computes on the solid's nodes. Models without such elements add none.
+  virtual void partition_work(PartitionWork& work) const {}
 
   // Wall times of work done outside the graph's systems (beside and after stages), for the timing table
   // and summary.json.

@@ -42,6 +42,20 @@ int main(int argc, char** argv) {
   graph_cmd->add_option("--set", graph_args.overrides, "override a scene value (repeatable)");
   graph_cmd->add_option("--threads,-j", graph_threads, "worker threads")->check(CLI::Range(1, 1024));
 
+  PartitionArgs partition_args;
+  auto* partition_cmd = app.add_subcommand(
+      "partition", "How a scene's solid splits across processes: METIS parts, halo, predicted efficiency");
+  partition_cmd->add_option("scene", partition_args.scene.scene, "scene file (YAML)");
+  partition_cmd->add_option("--set", partition_args.scene.overrides, "override a scene value (repeatable)");
+  partition_cmd
+      ->add_option("--ranks,-n", partition_args.ranks, "rank counts, e.g. 2,4,64 (default 2,4,8,16,64)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1 << 24));
+  partition_cmd->add_option("--latency", partition_args.latency_us, "network latency per message, us (1.5)");
+  partition_cmd->add_option("--bandwidth", partition_args.bandwidth_gbs,
+                            "bandwidth of a rank's link, GB/s (12.5)");
+  partition_cmd->add_option("--json", partition_args.json_out, "also write the reports to this JSON file");
+
   SweepArgs sweep_args;
   auto* sweep_cmd = app.add_subcommand(
       "sweep", "Run a scene's variants and record wall time against error (docs/speed-accuracy.md)");
@@ -96,6 +110,7 @@ int main(int argc, char** argv) {
     if (*check_cmd) return check(check_args, build_world);
     if (*info_cmd) return info();
     if (*graph_cmd) return graph(graph_args, graph_threads, build_world);
+    if (*partition_cmd) return partition(partition_args, build_world);
     if (*sweep_cmd) return sweep(sweep_args, build_world);
     if (*plot_cmd) return plot(plot_dir, plot_out);
     if (*render_cmd) return render(render_dir, render_options);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
+#include "systems/solid_partition_work.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
@@ -218,6 +219,15 @@ std::optional<std::string> SolidModel::check_energy(const StepContext& after) {
       << " s) or a joint or contact penalty too stiff for the step. What to change: reduce time.dt or "
          "time.safety, or lower the joint (or contact) penalty.";
   return why.str();
+}
+
+void SolidModel::partition_work(PartitionWork& work) const {
+  const auto nodes = int32_t(store_.table(solid::node_table).size());
+  if (spec_.fracture)
+    work = solid_partition_work(solid::tet::nodes.read(store_), solid::joint::nodes.read(store_),
+                                solid::joint::tets.read(store_), nodes);
+  else
+    work = solid_partition_work(solid::tet::nodes.read(store_), {}, {}, nodes);
 }
 
 void SolidModel::summarize(nlohmann::json& summary) const {

@@ -3,6 +3,7 @@
 #include <CGAL/version.h>
 #include <H5public.h>
 #include <HYPRE_config.h>
+#include <fmt/format.h>
 #include <metis.h>
 #include <mpi.h>
 #include <oneapi/tbb/version.h>
@@ -23,6 +24,7 @@
 #include "engine/core/folder_name.hpp"
 #include "engine/core/log.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/partition_report.hpp"
 #include "engine/plot/run_plot.hpp"
 #include "engine/run_loop.hpp"
 #include "engine/run_report.hpp"
@@ -279,6 +281,55 @@ int graph(const SceneArgs& args, int threads, const WorldBuilder& build) {
     std::cout << "/* the step, as the composition root scripts it:\n"
               << sim.world().plan.script() << "\n*/\n"
               << sim.graph().dot();
+  } catch (const Error& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
+
+int partition(const PartitionArgs& args, const WorldBuilder& build) {
+  init_logging(false, true);
+  auto scene = read_scene(args.scene);
+  if (!scene) return 2;
+  if (args.latency_us < 0.0 || args.bandwidth_gbs <= 0.0) {
+    std::cerr << "rift partition: --latency must be at least 0 and --bandwidth above 0\n";
+    return 2;
+  }
+  try {
+    RunOptions options;
+    options.write_output = false;
+    options.progress = false;
+    RunLoop set_up(std::move(*scene), options, build);
+    const World& world = set_up.world();
+    const PartitionWork work = collect_partition_work(world);
+    NetworkModel network;
+    network.latency = args.latency_us * 1e-6;
+    network.bandwidth = args.bandwidth_gbs * 1e9;
+    std::vector<PartitionReport> reports;
+    for (int ranks : args.ranks) {
+      if (ranks < 1 || size_t(ranks) > world.mesh.tets.size())
+        throw Error(fmt::format("rift partition: --ranks {}: give 1 to the mesh's {} tets", ranks,
+                                world.mesh.tets.size()));
+      reports.push_back(report_partition(world.mesh, work, ranks, network));
+    }
+    std::cout
+        << fmt::format(
+               "# {}: {} tets, {} solid nodes; work units of {:.0f} ns a step; network: {} us a message, "
+               "{} GB/s a rank; {} B a ghost node a step\n",
+               args.scene.scene.empty() ? default_scene_name : args.scene.scene, world.mesh.tets.size(),
+               work.nodes, network.unit_seconds * 1e9, args.latency_us, args.bandwidth_gbs, work.node_bytes)
+        << partition_table(reports);
+    if (!args.json_out.empty()) {
+      nlohmann::json j = {{"scene", args.scene.scene},
+                          {"network",
+                           {{"latency_s", network.latency},
+                            {"bandwidth_Bps", network.bandwidth},
+                            {"unit_seconds", network.unit_seconds}}},
+                          {"node_bytes", work.node_bytes}};
+      for (const PartitionReport& r : reports) j["partitions"].push_back(to_json(r));
+      write_text_atomic(args.json_out, j.dump(2) + "\n");
+    }
   } catch (const Error& e) {
     std::cerr << e.what() << "\n";
     return 2;

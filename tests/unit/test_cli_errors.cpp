@@ -10,36 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/unit/test_cli_support.hpp"
 #include "tests/unit/test_io_temp_dir.hpp"
 
 namespace rift {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliResult {
-  int exit_code;       // 128 + the signal when it was killed by one
-  std::string output;  // stdout and stderr
-};
-
-std::string shell_quoted(const std::string& arg) {
-  std::string out = "'";
-  for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-CliResult rift(const std::vector<std::string>& args) {
-  std::string command = shell_quoted(RIFT_EXECUTABLE);
-  for (const auto& a : args) command += " " + shell_quoted(a);
-  command += " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::string output;
-  char buffer[4096];
-  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
-}
 
 // The built-in quickstart scene, a few steps of it.
 std::vector<std::string> quick_run(const fs::path& out, std::vector<std::string> more = {}) {

@@ -1,0 +1,74 @@
+#pragma once
+// Who computes what when a run's nodes are split between processes, and what the processes must exchange:
+// the owner-computes rule. Each node belongs to one part, the part of the first tet that holds it. A part
+// computes every element with at least one node of its own, so an element across a part boundary is
+// computed by every part it touches, redundantly and from the same inputs, hence with the same result, and
+// each part gathers its own nodes' forces in the same order as one process does. The nodes of those
+// elements that another part owns are the part's ghosts: their state is received once per solid step,
+// before the forces.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rift {
+
+// One kind of element that acts on the nodes, e.g. the solid's tets (4 nodes) or joints (6 nodes).
+struct ElementNodes {
+  std::string name;
+  int32_t width = 0;               // nodes per element
+  std::span<const int32_t> nodes;  // element e's nodes: nodes[width e] .. nodes[width e + width - 1]
+  int32_t weight = 1;              // work units to compute one element for one step
+};
+
+// What the models of a run contribute to splitting it (Model::partition_work): the work of each tet of the
+// run's mesh for the partitioner (its own and its share of the elements around it), in units of about
+// 25 ns a step on one core (docs/performance.md, "Beyond one machine"), the elements they compute on the
+// nodes, and the bytes of a node's state a ghost must receive each step. The first element set is the
+// tets, in the mesh's order.
+struct PartitionWork {
+  std::vector<int32_t> tet_weight;
+  int32_t nodes = 0;
+  int32_t node_bytes = 0;
+  std::vector<ElementNodes> elements;
+};
+
+struct PartHalo {
+  int64_t owned_nodes = 0;
+  int64_t ghost_nodes = 0;        // other parts' nodes this part reads every step
+  int64_t nodes_sent = 0;         // own nodes that other parts read, counted once per reading part
+  int32_t receives_from = 0;      // parts this part receives from (messages per exchange)
+  int32_t sends_to = 0;           // parts this part sends to
+  std::vector<int64_t> computed;  // per element set: the elements this part computes
+  std::vector<int64_t> shared;    // per element set: of those, the ones other parts compute too
+  int64_t work = 0;               // the computed elements' weights
+};
+
+struct HaloPlan {
+  std::vector<std::string> element_sets;
+  std::vector<PartHalo> parts;
+};
+
+// One part's side of the plan: the lists its loops and its exchange need, all global ids in ascending order.
+// What a part receives from a neighbour and what that neighbour sends it are the same list, built by each
+// side from the same global mesh, so no list has to be agreed on at run time. Every element across a part
+// boundary has own nodes on each part that computes it, so the neighbours a part receives from are the
+// ones it sends to.
+struct RankHalo {
+  int32_t rank = 0;
+  std::vector<int32_t> owned;                  // the part's own nodes
+  std::vector<int32_t> neighbours;             // the parts it exchanges with
+  std::vector<std::vector<int32_t>> receive;   // per neighbour: that neighbour's nodes this part reads
+  std::vector<std::vector<int32_t>> send;      // per neighbour: own nodes that neighbour reads
+  std::vector<std::vector<int32_t>> elements;  // per element set: the elements this part computes
+};
+
+// `tet_part` gives the part of each element of sets[0] (the tets). Throws Error when a node lies in no
+// tet, an element's node or a part is out of range, or an element has more than 16 nodes.
+HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
+                   std::span<const ElementNodes> sets);
+// The same plan as seen by `rank` alone, with its lists; the same errors.
+RankHalo rank_halo(int32_t rank, int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
+                   std::span<const ElementNodes> sets);
+
+}  // namespace rift

@@ -11,40 +11,14 @@
 #include <stdexcept>
 #include <string>
 
-#if defined(__SANITIZE_ADDRESS__)
-#include <sanitizer/lsan_interface.h>
-// Open MPI keeps its set-up allocations to the end of the process; they are not Rift's leaks. Those made
-// inside MPI_Init are not tracked at all (hypre_runtime_init): some come from plug-ins MPI_Init loads,
-// rejects and unloads, which no stack can name afterwards. The rest are named by the library (or the libc
-// function) that made them: the allocation stacks are unwound the fast way (frame pointers, ASan's
-// default), which names the allocating frame reliably; the DWARF unwinder, which would see further into
-// libraries built without frame pointers, made every allocation ten times dearer (CGAL's meshing above
-// all).
-extern "C" const char* __lsan_default_suppressions() {
-  return "leak:libmpi\nleak:libopen-pal\nleak:libopen-rte\nleak:libhwloc\nleak:libevent\nleak:libpmix\n"
-         "leak:mca_\nleak:libudev\nleak:libfabric\nleak:libucs\nleak:libucp\nleak:libpsm\nleak:libibverbs\n"
-         "leak:__vasprintf_internal\nleak:strdup\n";
-}
-#endif
+#include "engine/distributed/mpi_runtime.hpp"
 
 namespace rift {
 
 namespace {
 
-bool g_we_initialised_mpi = false;
-
-void finalise_runtime() {
+void finalise_hypre() {
   HYPRE_Finalize();
-  int finalised = 0;
-  MPI_Finalized(&finalised);
-#if defined(__SANITIZE_ADDRESS__)
-  // MPI_Finalize unloads Open MPI's plug-ins and leaves their one-off allocations unreachable and
-  // unattributable (LeakSanitizer reports them from "<unknown module>"): sanitizer builds skip it. A
-  // singleton process may exit without it.
-  (void)finalised;
-#else
-  if (g_we_initialised_mpi && !finalised) MPI_Finalize();
-#endif
 }
 
 void check(HYPRE_Int err, const char* what) {
@@ -59,24 +33,9 @@ void check(HYPRE_Int err, const char* what) {
 void hypre_runtime_init() {
   static std::once_flag once;
   std::call_once(once, [] {
-    int initialised = 0;
-    MPI_Initialized(&initialised);
-    if (!initialised) {
-      // Keep Open MPI's plug-ins loaded until exit so that what they allocate stays attributable (the
-      // sanitizer builds suppress those allocations by library name). Does not override the user's choice.
-      setenv("OMPI_MCA_mca_base_component_disable_dlclose", "1", 0);
-#if defined(__SANITIZE_ADDRESS__)
-      __lsan_disable();  // Open MPI's own set-up (see the suppressions above)
-#endif
-      const int init = MPI_Init(nullptr, nullptr);
-#if defined(__SANITIZE_ADDRESS__)
-      __lsan_enable();
-#endif
-      if (init != MPI_SUCCESS) throw std::runtime_error("MPI_Init failed");
-      g_we_initialised_mpi = true;
-    }
+    mpi_runtime_init();  // registers MPI's finalisation first, so hypre's runs before it
     HYPRE_Init();
-    std::atexit(finalise_runtime);
+    std::atexit(finalise_hypre);
   });
 }
 

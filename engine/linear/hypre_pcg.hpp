@@ -3,9 +3,8 @@
 // pressure equation). Serial: one MPI rank on MPI_COMM_SELF.
 //
 // Debian's libhypre 2.26 is built against OpenMPI, so hypre needs MPI even in a serial program.
-// hypre_runtime_init() calls MPI_Init once when nothing else has (OpenMPI's singleton mode: the program
-// runs as its own one-rank job without mpirun, also as root, since only mpirun refuses root) and then
-// HYPRE_Init(); both are finalised at exit. Call it before any hypre object is made (HypreAmgPcg does).
+// hypre_runtime_init() starts MPI (engine/distributed/mpi_runtime.hpp) and then HYPRE_Init(); both are
+// finalised at exit. Call it before any hypre object is made (HypreAmgPcg does).
 //
 // Default settings: fluid.md 5.3 (hypre manual, 3-D diffusion): HMIS coarsening (10), extended+i
 // interpolation (6) truncated to 4 per row, strong threshold 0.5, one level of aggressive coarsening,

@@ -1,0 +1,18 @@
+#pragma once
+// MPI for the whole program, initialised once by the first piece that needs it. Under mpirun the program
+// is one rank of the job; without it Open MPI's singleton mode makes it a job of one rank (also as root,
+// since only mpirun refuses root). hypre needs MPI even in a serial run (Debian's libhypre is built against
+// Open MPI), so every run starts it. Only the thread that called this calls MPI (MPI_THREAD_FUNNELED): the
+// task graph's workers never do. MPI is finalised at exit, after whatever registered its own finalisation
+// later (hypre's).
+namespace rift {
+
+struct MpiRank {
+  int rank = 0;
+  int size = 1;
+};
+
+// Idempotent; throws Error when MPI_Init_thread fails or grants less than MPI_THREAD_FUNNELED.
+MpiRank mpi_runtime_init();
+
+}  // namespace rift

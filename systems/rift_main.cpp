@@ -6,6 +6,7 @@
 #include <new>
 
 #include "engine/cli/commands.hpp"
+#include "engine/distributed/mpi_runtime.hpp"
 #include "systems/world_builder.hpp"
 
 int main(int argc, char** argv) {
@@ -102,6 +103,17 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  }
+  // A scene runs on one process, with threads; a job of several ranks would run it once per rank, each
+  // writing the same folder. Refused before anything is written, said once: rank 0 says it and ends the
+  // job with status 2; the others end with 0 so that mpirun does not cut rank 0 off before it has said it.
+  if (const rift::MpiRank job = rift::launched_rank(); job.size > 1 && !*info_cmd) {
+    if (job.rank != 0) return 0;
+    std::cerr << "rift: this is a job of " << job.size << " processes (mpirun -np " << job.size
+              << "), but a scene runs on one process, with threads: run `rift run SCENE --threads N` without "
+                 "mpirun. `rift partition SCENE --ranks "
+              << job.size << "` shows how the scene would split across " << job.size << " ranks.\n";
+    return 2;
   }
   // The commands report what a user or a run can run into (rift::Error) themselves. Anything else is a
   // defect of Rift: it still ends with a message and exit 1, not an abort.

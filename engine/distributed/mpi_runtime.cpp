@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <mutex>
+#include <utility>
 
 #include "engine/core/error.hpp"
 
@@ -43,7 +44,25 @@ void finalise_mpi() {
 #endif
 }
 
+// A non-negative integer from the environment, or -1.
+int environment_count(const char* name) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return -1;
+  char* end = nullptr;
+  const long v = std::strtol(text, &end, 10);
+  return *end == '\0' && v >= 0 && v < (1L << 30) ? int(v) : -1;
+}
+
 }  // namespace
+
+MpiRank launched_rank() {
+  for (const auto& [rank, size] : {std::pair{"OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"},
+                                   std::pair{"PMI_RANK", "PMI_SIZE"}, std::pair{"PMIX_RANK", "PMIX_SIZE"}}) {
+    const int r = environment_count(rank), n = environment_count(size);
+    if (r >= 0 && n >= 1) return {r, n};
+  }
+  return {};
+}
 
 MpiRank mpi_runtime_init() {
   static std::once_flag once;

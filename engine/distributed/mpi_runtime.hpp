@@ -15,4 +15,8 @@ struct MpiRank {
 // Idempotent; throws Error when MPI_Init_thread fails or grants less than MPI_THREAD_FUNNELED.
 MpiRank mpi_runtime_init();
 
+// The rank and size of the job this process was launched in, from the launcher's environment (Open MPI's
+// mpirun, Hydra's and Slurm's PMI), without starting MPI: {0, 1} for a process started on its own.
+MpiRank launched_rank();
+
 }  // namespace rift

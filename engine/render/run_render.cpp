@@ -76,13 +76,14 @@ RenderResult render_run(const fs::path& run_dir, const RenderOptions& o) {
   const fs::path log = out / "render_run.log";
   // xvfb-run -a takes the first display number without a lock file: two runs starting together may both
   // take it (one server fails to start), or find a server that another run is stopping (the connection
-  // is refused). Those, and only those, are tried again.
+  // is refused). Those, and only those, are tried again, waiting 1, 2, 4 and 8 s: on a loaded machine
+  // three tries 0.5 and 1 s apart were all refused once (a CI run beside a 1e7-tet partition).
   int status = 0;
-  for (int attempt = 0; attempt < 3; ++attempt) {
+  for (int attempt = 0; attempt < 5; ++attempt) {
     fs::remove(log, ec);
     status = run_program(command, {}, log);
     if (status == 0 || !display_was_refused(log)) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(500 * (attempt + 1)));
+    std::this_thread::sleep_for(std::chrono::seconds(1 << attempt));
   }
   std::ifstream written(log);
   std::string message;

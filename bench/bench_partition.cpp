@@ -40,9 +40,9 @@ const JointedBlock& block(int cells) {
     fresh->mesh = rift::generate_lattice_box({cells, cells, cells}, {0.1, 0.1, 0.1});
     fresh->dm = rift::make_discontinuous(fresh->mesh, [](size_t) { return true; });
     const auto& dm = fresh->dm;
-    fresh->work = rift::solid_partition_work(
-        {dm.tets.front().data(), 4 * dm.tets.size()}, {dm.joints.front().data(), 6 * dm.joints.size()},
-        {dm.joint_tets.front().data(), 2 * dm.joint_tets.size()}, int32_t(dm.nodes.size()));
+    fresh->work = rift::solid_partition_work({dm.tets.front().data(), 4 * dm.tets.size()}, dm.node_vertex,
+                                             {dm.joints.front().data(), 6 * dm.joints.size()},
+                                             {dm.joint_tets.front().data(), 2 * dm.joint_tets.size()});
     blocks[cells] = std::move(fresh);
   }
   return *blocks[cells];
@@ -55,7 +55,7 @@ void BM_PartitionJointedBlock(benchmark::State& state) {
   const rift::NetworkModel infiniband{1.5e-6, 12.5e9, 25e-9}, ethernet{25e-6, 1.25e9, 25e-9};
   rift::PartitionReport r;
   for (auto _ : state) {
-    r = rift::report_partition(b.mesh, b.work, parts, infiniband);
+    r = rift::report_partition(b.work, parts, infiniband);
     benchmark::DoNotOptimize(r.edge_cut);
   }
   state.SetItemsProcessed(state.iterations() * int64_t(b.mesh.tets.size()));

@@ -38,9 +38,10 @@ class Model {
   // Logs beside the time series (e.g. the fracture log), written atomically whenever it is.
   virtual void write_logs(const std::filesystem::path& dir) const {}
 
-  // Splitting the run across processes (engine/mesh/halo_plan.hpp): the work of each tet of the run's
-  // mesh, and the elements this model computes on the solid's nodes. Models without such elements add none.
-  virtual void partition_work(PartitionWork& work) const {}
+  // Splitting the run across processes (engine/mesh/halo_plan.hpp): one entry per mesh this model
+  // computes on, with its tets' work and the elements on its nodes. Models without a mesh of their own add
+  // none.
+  virtual void partition_work(std::vector<PartitionWork>& domains) const {}
 
   // Wall times of work done outside the graph's systems (beside and after stages), for the timing table
   // and summary.json.

@@ -12,15 +12,14 @@
 
 namespace rift {
 
-PartitionWork collect_partition_work(const World& world) {
-  PartitionWork work;
-  for (const auto& model : world.models) model->partition_work(work);
-  if (work.elements.empty())
-    throw Error("partition: the scene has no solid; the split follows the solid's tets and nodes");
-  if (work.tet_weight.size() != world.mesh.tets.size())
-    throw Error(fmt::format("partition: {} tet weights for a mesh of {} tets", work.tet_weight.size(),
-                            world.mesh.tets.size()));
-  return work;
+std::vector<PartitionWork> collect_partition_work(const World& world) {
+  std::vector<PartitionWork> domains;
+  for (const auto& model : world.models) model->partition_work(domains);
+  for (const PartitionWork& d : domains)
+    if (d.tet_weight.size() != d.graph_tets.size() || d.elements.empty())
+      throw Error(fmt::format("partition: the {} gives {} tet weights for {} tets", d.domain,
+                              d.tet_weight.size(), d.graph_tets.size()));
+  return domains;
 }
 
 namespace {
@@ -34,13 +33,14 @@ double exchange_seconds(const PartHalo& p, int32_t ranks, int32_t node_bytes, co
 
 }  // namespace
 
-PartitionReport report_partition(const TetMesh& mesh, const PartitionWork& work, int32_t ranks,
-                                 const NetworkModel& network) {
-  const TetPartition partition = partition_tets(mesh, ranks, work.tet_weight);
+PartitionReport report_partition(const PartitionWork& work, int32_t ranks, const NetworkModel& network) {
+  const TetPartition partition = partition_tets(work.graph_tets, ranks, work.tet_weight);
   HaloPlan plan = plan_halo(ranks, partition.part, work.nodes, work.elements);
   PartitionReport r;
+  r.domain = work.domain;
+  r.timed = work.timed;
   r.ranks = ranks;
-  r.tets = int64_t(mesh.tets.size());
+  r.tets = int64_t(work.graph_tets.size());
   r.nodes = work.nodes;
   r.edge_cut = partition.edge_cut;
   r.weight_imbalance = partition.imbalance;
@@ -70,6 +70,7 @@ PartitionReport report_partition(const TetMesh& mesh, const PartitionWork& work,
 }
 
 void predict_step(PartitionReport& r, const NetworkModel& network) {
+  if (!r.timed) return;
   double slowest = 0.0;
   for (const PartHalo& p : r.halo.parts)
     slowest = std::max(
@@ -80,7 +81,8 @@ void predict_step(PartitionReport& r, const NetworkModel& network) {
 }
 
 nlohmann::json to_json(const PartitionReport& r) {
-  nlohmann::json j = {{"ranks", r.ranks},
+  nlohmann::json j = {{"domain", r.domain},
+                      {"ranks", r.ranks},
                       {"tets", r.tets},
                       {"nodes", r.nodes},
                       {"edge_cut", r.edge_cut},
@@ -91,10 +93,12 @@ nlohmann::json to_json(const PartitionReport& r) {
                       {"ghost_nodes_max", r.ghost_nodes_max},
                       {"ghost_nodes_mean", r.ghost_nodes_mean},
                       {"halo_bytes_max", r.halo_bytes_max},
-                      {"neighbours_max", r.neighbours_max},
-                      {"step_seconds_one", r.step_seconds_one},
-                      {"step_seconds", r.step_seconds},
-                      {"efficiency", r.efficiency}};
+                      {"neighbours_max", r.neighbours_max}};
+  if (r.timed) {
+    j["step_seconds_one"] = r.step_seconds_one;
+    j["step_seconds"] = r.step_seconds;
+    j["efficiency"] = r.efficiency;
+  }
   for (size_t s = 0; s < r.element_sets.size(); ++s)
     j["elements"][r.element_sets[s]] = {{"count", r.elements[s]}, {"redundant", r.redundant[s]}};
   return j;
@@ -109,11 +113,13 @@ std::string partition_table(std::span<const PartitionReport> reports) {
     for (size_t s = 0; s < r.elements.size(); ++s) redundant += r.redundant[s] * double(r.elements[s]);
     int64_t elements = 0;
     for (int64_t e : r.elements) elements += e;
-    out += fmt::format(
-        "{:>6} {:>9} {:>9.3f} {:>9.3f} {:>11} {:>11.0f} {:>10.1f} {:>6} {:>9.2f}% {:>10.1f} {:>6.3f}\n",
-        r.ranks, r.edge_cut, r.weight_imbalance, r.work_imbalance, r.ghost_nodes_max, r.ghost_nodes_mean,
-        double(r.halo_bytes_max) / 1024.0, r.neighbours_max,
-        100.0 * redundant / double(std::max<int64_t>(elements, 1)), 1e6 * r.step_seconds, r.efficiency);
+    const std::string step = r.timed ? fmt::format("{:.1f}", 1e6 * r.step_seconds) : "-";
+    const std::string efficiency = r.timed ? fmt::format("{:.3f}", r.efficiency) : "-";
+    out +=
+        fmt::format("{:>6} {:>9} {:>9.3f} {:>9.3f} {:>11} {:>11.0f} {:>10.1f} {:>6} {:>9.2f}% {:>10} {:>6}\n",
+                    r.ranks, r.edge_cut, r.weight_imbalance, r.work_imbalance, r.ghost_nodes_max,
+                    r.ghost_nodes_mean, double(r.halo_bytes_max) / 1024.0, r.neighbours_max,
+                    100.0 * redundant / double(std::max<int64_t>(elements, 1)), step, efficiency);
   }
   return out;
 }

@@ -1,7 +1,8 @@
 #pragma once
-// How a run would split across processes: METIS parts of its mesh, weighted by the models' work
-// (Model::partition_work), the owner-computes halo of each part (engine/mesh/halo_plan.hpp), and the
-// time per step and parallel efficiency that predicts on a stated network. `rift partition` prints it for
+// How a run would split across processes: METIS parts of each of its meshes (the solid's, the fluid's),
+// weighted by the models' work (Model::partition_work), the owner-computes halo of each part
+// (engine/mesh/halo_plan.hpp), and, where the work is timed (the solid's), the time per step and parallel
+// efficiency that predicts on a stated network. `rift partition` prints it for
 // a scene; bench/halo_study.cpp tabulates it for blocks of 1e6 and 1e7 tets (docs/performance.md,
 // "Beyond one machine").
 #include <cstdint>
@@ -11,7 +12,6 @@
 #include <vector>
 
 #include "engine/mesh/halo_plan.hpp"
-#include "engine/mesh/tet_mesh.hpp"
 
 namespace rift {
 
@@ -28,6 +28,8 @@ struct NetworkModel {
 };
 
 struct PartitionReport {
+  std::string domain;
+  bool timed = false;  // step times and efficiency are predicted
   int32_t ranks = 1;
   int64_t tets = 0, nodes = 0;
   std::vector<std::string> element_sets;
@@ -49,17 +51,16 @@ struct PartitionReport {
   int32_t node_bytes = 0;
 };
 
-// The models' contributions, merged (the solid's today); throws Error when a scene has no solid.
-PartitionWork collect_partition_work(const World& world);
+// The models' contributions, one per mesh; throws Error when a model's tet weights do not match its tets.
+std::vector<PartitionWork> collect_partition_work(const World& world);
 
-PartitionReport report_partition(const TetMesh& mesh, const PartitionWork& work, int32_t ranks,
-                                 const NetworkModel& network);
+PartitionReport report_partition(const PartitionWork& work, int32_t ranks, const NetworkModel& network);
 
 // Sets the report's step times and efficiency for `network` (report_partition does it for its own).
 void predict_step(PartitionReport& report, const NetworkModel& network);
 
 nlohmann::json to_json(const PartitionReport& report);
-// One line per report under a header, for a terminal.
+// One line per report under a header, for a terminal (one domain's reports).
 std::string partition_table(std::span<const PartitionReport> reports);
 
 }  // namespace rift

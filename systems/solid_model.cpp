@@ -221,13 +221,13 @@ std::optional<std::string> SolidModel::check_energy(const StepContext& after) {
   return why.str();
 }
 
-void SolidModel::partition_work(PartitionWork& work) const {
-  const auto nodes = int32_t(store_.table(solid::node_table).size());
+void SolidModel::partition_work(std::vector<PartitionWork>& domains) const {
+  const auto tets = solid::tet::nodes.read(store_), vertex = solid::node::vertex.read(store_);
   if (spec_.fracture)
-    work = solid_partition_work(solid::tet::nodes.read(store_), solid::joint::nodes.read(store_),
-                                solid::joint::tets.read(store_), nodes);
+    domains.push_back(solid_partition_work(tets, vertex, solid::joint::nodes.read(store_),
+                                           solid::joint::tets.read(store_)));
   else
-    work = solid_partition_work(solid::tet::nodes.read(store_), {}, {}, nodes);
+    domains.push_back(solid_partition_work(tets, vertex, {}, {}));
 }
 
 void SolidModel::summarize(nlohmann::json& summary) const {

@@ -54,7 +54,7 @@ class SolidModel : public Model {
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;
-  void partition_work(PartitionWork& work) const override;
+  void partition_work(std::vector<PartitionWork>& domains) const override;
   void write_logs(const std::filesystem::path& dir) const override;
 
   SolidEnergies energies() const;

@@ -18,9 +18,10 @@ inline constexpr int32_t kTetWorkUnits = 2;
 inline constexpr int32_t kJointWorkUnits = 2;
 inline constexpr int32_t kSolidGhostNodeBytes = 48;
 
-// tet_nodes: 4 per tet; joint_nodes: 6 per joint; joint_tets: the 2 tets of each joint. The spans must
-// outlive the result, which points into them.
-PartitionWork solid_partition_work(std::span<const int32_t> tet_nodes, std::span<const int32_t> joint_nodes,
-                                   std::span<const int32_t> joint_tets, int32_t nodes);
+// tet_nodes: 4 per tet; node_vertex: the mesh vertex each node copies (the tets on it make the continuous
+// mesh the partitioner splits); joint_nodes: 6 per joint; joint_tets: the 2 tets of each joint. The spans
+// must outlive the result, which points into them.
+PartitionWork solid_partition_work(std::span<const int32_t> tet_nodes, std::span<const int32_t> node_vertex,
+                                   std::span<const int32_t> joint_nodes, std::span<const int32_t> joint_tets);
 
 }  // namespace rift

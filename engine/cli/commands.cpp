@@ -301,35 +301,43 @@ int partition(const PartitionArgs& args, const WorldBuilder& build) {
     options.write_output = false;
     options.progress = false;
     RunLoop set_up(std::move(*scene), options, build);
-    const World& world = set_up.world();
-    const PartitionWork work = collect_partition_work(world);
+    const std::vector<PartitionWork> domains = collect_partition_work(set_up.world());
     NetworkModel network;
     network.latency = args.latency_us * 1e-6;
     network.bandwidth = args.bandwidth_gbs * 1e9;
-    std::vector<PartitionReport> reports;
-    for (int ranks : args.ranks) {
-      if (ranks < 1 || size_t(ranks) > world.mesh.tets.size())
-        throw Error(fmt::format("rift partition: --ranks {}: give 1 to the mesh's {} tets", ranks,
-                                world.mesh.tets.size()));
-      reports.push_back(report_partition(world.mesh, work, ranks, network));
+    nlohmann::json j = {{"scene", args.scene.scene},
+                        {"network",
+                         {{"latency_s", network.latency},
+                          {"bandwidth_Bps", network.bandwidth},
+                          {"unit_seconds", network.unit_seconds}}}};
+    std::string text;
+    for (const PartitionWork& work : domains) {
+      std::vector<PartitionReport> reports;
+      for (int ranks : args.ranks) {
+        if (ranks < 1 || size_t(ranks) > work.graph_tets.size())
+          throw Error(fmt::format("rift partition: --ranks {}: give 1 to the {} mesh's {} tets", ranks,
+                                  work.domain, work.graph_tets.size()));
+        reports.push_back(report_partition(work, ranks, network));
+      }
+      text += fmt::format("# {} of {}: {} tets, {} nodes, {} B a ghost node an exchange", work.domain,
+                          args.scene.scene.empty() ? default_scene_name : args.scene.scene,
+                          work.graph_tets.size(), work.nodes, work.node_bytes);
+      text += work.timed ? fmt::format(
+                               "; work units of {:.0f} ns a step; network: {} us a message, {} GB/s a "
+                               "rank\n",
+                               network.unit_seconds * 1e9, args.latency_us, args.bandwidth_gbs)
+                         : "; no time predicted (the exchanges per step depend on the solver's iterations)\n";
+      text += partition_table(reports);
+      nlohmann::json d = {{"domain", work.domain},
+                          {"tets", work.graph_tets.size()},
+                          {"nodes", work.nodes},
+                          {"node_bytes", work.node_bytes},
+                          {"timed", work.timed}};
+      for (const PartitionReport& r : reports) d["partitions"].push_back(to_json(r));
+      j["domains"].push_back(d);
     }
-    std::cout
-        << fmt::format(
-               "# {}: {} tets, {} solid nodes; work units of {:.0f} ns a step; network: {} us a message, "
-               "{} GB/s a rank; {} B a ghost node a step\n",
-               args.scene.scene.empty() ? default_scene_name : args.scene.scene, world.mesh.tets.size(),
-               work.nodes, network.unit_seconds * 1e9, args.latency_us, args.bandwidth_gbs, work.node_bytes)
-        << partition_table(reports);
-    if (!args.json_out.empty()) {
-      nlohmann::json j = {{"scene", args.scene.scene},
-                          {"network",
-                           {{"latency_s", network.latency},
-                            {"bandwidth_Bps", network.bandwidth},
-                            {"unit_seconds", network.unit_seconds}}},
-                          {"node_bytes", work.node_bytes}};
-      for (const PartitionReport& r : reports) j["partitions"].push_back(to_json(r));
-      write_text_atomic(args.json_out, j.dump(2) + "\n");
-    }
+    std::cout << text;
+    if (!args.json_out.empty()) write_text_atomic(args.json_out, j.dump(2) + "\n");
   } catch (const Error& e) {
     std::cerr << e.what() << "\n";
     return 2;

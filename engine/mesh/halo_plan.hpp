@@ -6,6 +6,7 @@
 // each part gathers its own nodes' forces in the same order as one process does. The nodes of those
 // elements that another part owns are the part's ghosts: their state is received once per solid step,
 // before the forces.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -21,15 +22,19 @@ struct ElementNodes {
   int32_t weight = 1;              // work units to compute one element for one step
 };
 
-// What the models of a run contribute to splitting it (Model::partition_work): the work of each tet of the
-// run's mesh for the partitioner (its own and its share of the elements around it), in units of about
-// 25 ns a step on one core (docs/performance.md, "Beyond one machine"), the elements they compute on the
-// nodes, and the bytes of a node's state a ghost must receive each step. The first element set is the
-// tets, in the mesh's order.
+// What a model contributes to splitting a run (Model::partition_work), one per mesh it computes on (the
+// solid's, the fluid's): the tets as the partitioner sees them (their continuous mesh, whose shared faces
+// make the dual graph), the work of each tet for the partitioner (its own and its share of the elements
+// around it), the elements computed on the nodes (the first set is the tets, in the same order), and the
+// bytes of a node's state a ghost receives at each exchange. `timed`: the work is in units of 25 ns of one
+// core a step (docs/performance.md, "Beyond one machine"), so a time per step can be predicted from it.
 struct PartitionWork {
+  std::string domain;
+  std::vector<std::array<int32_t, 4>> graph_tets;
   std::vector<int32_t> tet_weight;
   int32_t nodes = 0;
   int32_t node_bytes = 0;
+  bool timed = false;
   std::vector<ElementNodes> elements;
 };
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -38,7 +39,7 @@ using OpenFaces = std::unordered_map<FaceKey, std::pair<int32_t, int32_t>, FaceK
 // kTetFaceCorners), in the order in which the second tet meets it: the first tet to show a face waits in a
 // map for the second. Returns the faces left waiting: the boundary's.
 template <class Shared>
-OpenFaces for_each_shared_face(const std::vector<std::array<int32_t, 4>>& tets, Shared&& shared) {
+OpenFaces for_each_shared_face(std::span<const std::array<int32_t, 4>> tets, Shared&& shared) {
   OpenFaces open;
   open.reserve(2 * tets.size());
   for (size_t e = 0; e < tets.size(); ++e)

@@ -10,11 +10,11 @@
 
 namespace rift {
 
-TetDualGraph tet_dual_graph(const TetMesh& mesh) {
-  const size_t n = mesh.tets.size();
+TetDualGraph tet_dual_graph(std::span<const std::array<int32_t, 4>> tets) {
+  const size_t n = tets.size();
   // The tet across each face (-1: the boundary).
   std::vector<std::array<int32_t, 4>> across(n, {-1, -1, -1, -1});
-  for_each_shared_face(mesh.tets, [&](int32_t a, int32_t fa, int32_t b, int32_t fb) {
+  for_each_shared_face(tets, [&](int32_t a, int32_t fa, int32_t b, int32_t fb) {
     across[size_t(a)][size_t(fa)] = b;
     across[size_t(b)][size_t(fb)] = a;
   });
@@ -31,8 +31,9 @@ TetDualGraph tet_dual_graph(const TetMesh& mesh) {
   return g;
 }
 
-TetPartition partition_tets(const TetMesh& mesh, int32_t parts, std::span<const int32_t> weight) {
-  const size_t n = mesh.tets.size();
+TetPartition partition_tets(std::span<const std::array<int32_t, 4>> tets, int32_t parts,
+                            std::span<const int32_t> weight) {
+  const size_t n = tets.size();
   if (parts < 1 || size_t(parts) > n)
     throw Error(fmt::format("partition: {} parts of a mesh of {} tets; give 1 to {}", parts, n, n));
   if (!weight.empty() && weight.size() != n)
@@ -42,7 +43,7 @@ TetPartition partition_tets(const TetMesh& mesh, int32_t parts, std::span<const 
   TetPartition out;
   out.parts = parts;
   out.part.assign(n, 0);
-  const TetDualGraph g = tet_dual_graph(mesh);
+  const TetDualGraph g = tet_dual_graph(tets);
   if (parts > 1) {
     std::vector<idx_t> xadj(g.start.begin(), g.start.end()), adjncy(g.adjacency.begin(), g.adjacency.end());
     std::vector<idx_t> vwgt(weight.begin(), weight.end()), part(n, 0);

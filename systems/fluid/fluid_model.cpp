@@ -288,6 +288,23 @@ void FluidModel::metrics(double, std::vector<std::pair<std::string, double>>& ro
   row.emplace_back("fluid_pressure_max", pmax);
 }
 
+// The fluid's mesh is continuous: its own tets make the dual graph. Each tet weighs 1 (the assembly's
+// work is per tet and the mesh is the same everywhere); a ghost node's exchange is one value of a Krylov
+// vector, 8 B, once per solver iteration, so no time per step is predicted.
+void FluidModel::partition_work(std::vector<PartitionWork>& domains) const {
+  const auto nodes = fluid::tet::nodes.read(store_);
+  PartitionWork work;
+  work.domain = "fluid";
+  work.nodes = int32_t(store_.table(fluid::node_table).size());
+  work.node_bytes = 8;
+  work.graph_tets.resize(nodes.size() / 4);
+  for (size_t t = 0; t < work.graph_tets.size(); ++t)
+    for (size_t c = 0; c < 4; ++c) work.graph_tets[t][c] = nodes[4 * t + c];
+  work.tet_weight.assign(work.graph_tets.size(), 1);
+  work.elements.push_back({"tets", 4, nodes, 1});
+  domains.push_back(std::move(work));
+}
+
 void FluidModel::summarize(nlohmann::json& summary) const {
   namespace fs = fluid::step;
   auto v = [&](const ColumnRef<double>& c) { return c.read(store_)[0]; };

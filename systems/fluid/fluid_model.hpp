@@ -39,6 +39,7 @@ class FluidModel : public Model {
   void output_grids(std::vector<XdmfGrid>& grids, const std::vector<std::string>& fields) override;
   void metrics(double time, std::vector<std::pair<std::string, double>>& row) override;
   void summarize(nlohmann::json& summary) const override;
+  void partition_work(std::vector<PartitionWork>& domains) const override;
   void restored(const StepContext& at) override;
 
   // fluid.adapt: `mesh` (same box and surfaces) replaces the fluid's mesh at `time`; velocity, pressure and

@@ -189,7 +189,7 @@ TEST(HaloPlan, TheSolidWeighsATetByItselfAndHalfOfEachOfItsJoints) {
   const TetMesh mesh = generate_lattice_box({n, n, n}, {1.0, 1.0, 1.0});
   const DiscontinuousMesh dm = make_discontinuous(mesh, [](size_t) { return true; });
   const PartitionWork work =
-      solid_partition_work(flat(dm.tets), flat(dm.joints), flat(dm.joint_tets), int32_t(dm.nodes.size()));
+      solid_partition_work(flat(dm.tets), dm.node_vertex, flat(dm.joints), flat(dm.joint_tets));
   ASSERT_EQ(work.tet_weight.size(), mesh.tets.size());
   const size_t boundary_faces = 6 * n * n * 2;
   int64_t total = 0;
@@ -202,7 +202,10 @@ TEST(HaloPlan, TheSolidWeighsATetByItselfAndHalfOfEachOfItsJoints) {
   EXPECT_EQ(work.node_bytes, 48);
   ASSERT_EQ(work.elements.size(), 2u);
   EXPECT_EQ(work.elements[1].weight, 2);
-  const PartitionWork dry = solid_partition_work(flat(dm.tets), {}, {}, int32_t(dm.nodes.size()));
+  // The partitioner sees the continuous mesh: the lattice's own tets.
+  EXPECT_EQ(work.graph_tets, mesh.tets);
+  EXPECT_EQ(work.nodes, int32_t(dm.nodes.size()));
+  const PartitionWork dry = solid_partition_work(flat(dm.tets), dm.node_vertex, {}, {});
   EXPECT_EQ(dry.elements.size(), 1u);
   for (int32_t w : dry.tet_weight) EXPECT_EQ(w, 2);
 }

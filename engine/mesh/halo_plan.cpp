@@ -13,9 +13,11 @@ namespace {
 
 constexpr int32_t kMaxWidth = 16;
 
-// The part that owns each node: the part of the first tet that holds it.
+// The part that owns each node: the part of the first tet that holds it (sets[0] are the tets).
 std::vector<int32_t> node_owners(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                                 const ElementNodes& tets) {
+                                 std::span<const ElementNodes> sets) {
+  if (parts < 1 || sets.empty()) throw Error("halo plan: needs at least one part and the tets");
+  const ElementNodes& tets = sets[0];
   if (tets.width < 1 || tets.nodes.size() != tet_part.size() * size_t(tets.width))
     throw Error(fmt::format("halo plan: {} parts given for {} of {} nodes each", tet_part.size(), tets.name,
                             tets.width));
@@ -41,25 +43,32 @@ uint64_t pair_key(int32_t a, int32_t b) {
   return uint64_t(uint32_t(a)) << 32 | uint32_t(b);
 }
 
-void check_set(const ElementNodes& set) {
-  if (set.width < 1 || set.width > kMaxWidth || set.nodes.size() % size_t(set.width) != 0)
-    throw Error(fmt::format("halo plan: {} has {} node ids for elements of {} nodes (at most {})", set.name,
-                            set.nodes.size(), set.width, kMaxWidth));
-}
-
-// The parts that compute element e of `set` (the distinct owners of its nodes, in the order met); returns
-// their count.
-int32_t computing_parts(const ElementNodes& set, size_t e, std::span<const int32_t> owner,
-                        std::array<int32_t, kMaxWidth>& computing) {
-  int32_t k = 0;
-  for (int32_t n : set.nodes.subspan(e * size_t(set.width), size_t(set.width))) {
-    if (n < 0 || size_t(n) >= owner.size())
-      throw Error(fmt::format("halo plan: {} {} has node {}, not in [0, {})", set.name, e, n, owner.size()));
-    const int32_t o = owner[size_t(n)];
-    if (std::find(computing.begin(), computing.begin() + k, o) == computing.begin() + k)
-      computing[size_t(k++)] = o;
+// Calls visit(set index, element index, element nodes, computing parts) for every element of every set; the
+// computing parts are the distinct owners of the element's nodes, in the order met. Checks each set's shape
+// and node ids.
+template <class Visit>
+void for_each_element(std::span<const ElementNodes> sets, std::span<const int32_t> owner, Visit&& visit) {
+  for (size_t s = 0; s < sets.size(); ++s) {
+    const ElementNodes& set = sets[s];
+    if (set.width < 1 || set.width > kMaxWidth || set.nodes.size() % size_t(set.width) != 0)
+      throw Error(fmt::format("halo plan: {} has {} node ids for elements of {} nodes (at most {})", set.name,
+                              set.nodes.size(), set.width, kMaxWidth));
+    const size_t count = set.nodes.size() / size_t(set.width);
+    for (size_t e = 0; e < count; ++e) {
+      const std::span<const int32_t> nodes = set.nodes.subspan(e * size_t(set.width), size_t(set.width));
+      std::array<int32_t, kMaxWidth> computing;
+      int32_t k = 0;
+      for (int32_t n : nodes) {
+        if (n < 0 || size_t(n) >= owner.size())
+          throw Error(
+              fmt::format("halo plan: {} {} has node {}, not in [0, {})", set.name, e, n, owner.size()));
+        const int32_t o = owner[size_t(n)];
+        if (std::find(computing.begin(), computing.begin() + k, o) == computing.begin() + k)
+          computing[size_t(k++)] = o;
+      }
+      visit(s, e, nodes, std::span<const int32_t>(computing.data(), size_t(k)));
+    }
   }
-  return k;
 }
 
 void sort_unique(std::vector<int32_t>& v) {
@@ -71,8 +80,7 @@ void sort_unique(std::vector<int32_t>& v) {
 
 HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
                    std::span<const ElementNodes> sets) {
-  if (parts < 1 || sets.empty()) throw Error("halo plan: needs at least one part and the tets");
-  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets[0]);
+  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets);
   HaloPlan plan;
   plan.parts.resize(size_t(parts));
   for (const ElementNodes& s : sets) plan.element_sets.push_back(s.name);
@@ -84,23 +92,17 @@ HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nod
 
   // (part, ghost node) once per element that makes it a ghost; made unique below.
   std::vector<uint64_t> ghosts;
-  for (size_t s = 0; s < sets.size(); ++s) {
-    const ElementNodes& set = sets[s];
-    check_set(set);
-    const size_t count = set.nodes.size() / size_t(set.width);
-    for (size_t e = 0; e < count; ++e) {
-      std::array<int32_t, kMaxWidth> computing{};
-      const int32_t k = computing_parts(set, e, owner, computing);
-      for (int32_t i = 0; i < k; ++i) {
-        PartHalo& p = plan.parts[size_t(computing[size_t(i)])];
-        ++p.computed[s];
-        p.work += set.weight;
-        if (k > 1) ++p.shared[s];
-        for (int32_t n : set.nodes.subspan(e * size_t(set.width), size_t(set.width)))
-          if (owner[size_t(n)] != computing[size_t(i)]) ghosts.push_back(pair_key(computing[size_t(i)], n));
-      }
-    }
-  }
+  for_each_element(sets, owner,
+                   [&](size_t s, size_t, std::span<const int32_t> nodes, std::span<const int32_t> computing) {
+                     for (int32_t part : computing) {
+                       PartHalo& p = plan.parts[size_t(part)];
+                       ++p.computed[s];
+                       p.work += sets[s].weight;
+                       if (computing.size() > 1) ++p.shared[s];
+                       for (int32_t n : nodes)
+                         if (owner[size_t(n)] != part) ghosts.push_back(pair_key(part, n));
+                     }
+                   });
   std::sort(ghosts.begin(), ghosts.end());
   ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
 
@@ -124,35 +126,29 @@ HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nod
 
 RankHalo rank_halo(int32_t rank, int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
                    std::span<const ElementNodes> sets) {
-  if (parts < 1 || sets.empty()) throw Error("halo plan: needs at least one part and the tets");
+  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets);
   if (rank < 0 || rank >= parts) throw Error(fmt::format("halo plan: rank {} of {} parts", rank, parts));
-  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets[0]);
   RankHalo h;
   h.rank = rank;
   for (size_t n = 0; n < owner.size(); ++n)
     if (owner[n] == rank) h.owned.push_back(int32_t(n));
   auto receive = std::vector<std::vector<int32_t>>(size_t(parts)), send = receive;
   h.elements.resize(sets.size());
-  for (size_t s = 0; s < sets.size(); ++s) {
-    const ElementNodes& set = sets[s];
-    check_set(set);
-    const size_t count = set.nodes.size() / size_t(set.width);
-    for (size_t e = 0; e < count; ++e) {
-      std::array<int32_t, kMaxWidth> computing{};
-      const int32_t k = computing_parts(set, e, owner, computing);
-      if (std::find(computing.begin(), computing.begin() + k, rank) == computing.begin() + k) continue;
-      h.elements[s].push_back(int32_t(e));
-      for (int32_t n : set.nodes.subspan(e * size_t(set.width), size_t(set.width))) {
-        const int32_t o = owner[size_t(n)];
-        if (o != rank) {
-          receive[size_t(o)].push_back(n);
-          continue;
+  for_each_element(
+      sets, owner,
+      [&](size_t s, size_t e, std::span<const int32_t> nodes, std::span<const int32_t> computing) {
+        if (std::find(computing.begin(), computing.end(), rank) == computing.end()) return;
+        h.elements[s].push_back(int32_t(e));
+        for (int32_t n : nodes) {
+          const int32_t o = owner[size_t(n)];
+          if (o != rank) {
+            receive[size_t(o)].push_back(n);
+            continue;
+          }
+          for (int32_t part : computing)
+            if (part != rank) send[size_t(part)].push_back(n);
         }
-        for (int32_t i = 0; i < k; ++i)
-          if (computing[size_t(i)] != rank) send[size_t(computing[size_t(i)])].push_back(n);
-      }
-    }
-  }
+      });
   for (int32_t q = 0; q < parts; ++q) {
     if (receive[size_t(q)].empty() && send[size_t(q)].empty()) continue;
     h.neighbours.push_back(q);

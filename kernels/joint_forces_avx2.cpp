@@ -3,9 +3,11 @@
 // over the points are restated lane-wise here with the same expressions in the same order as the scalar
 // kernel, so the two paths agree to the compiler's fused multiply-adds (the unit tests compare them on
 // random joints in every state).
-// Groups holding a broken or degenerate joint go through joint_forces_scalar joint by joint (rare, and
-// those joints need no law). A partial group at the end of [begin, end) repeats its last joint in the spare
-// lanes and stores only the real ones, so each joint takes the same arithmetic whatever the thread split.
+// A broken or degenerate joint, or a damaged one whose material has residual friction (its slider keeps a
+// history), goes through joint_forces_scalar on its own (rare, and broken joints need no law); the other
+// lanes of its group keep the vector path's results. A partial group at the end of [begin, end) repeats its
+// last joint in the spare lanes and stores only the real ones. So each joint takes the same arithmetic
+// whatever its group holds, and whatever the split of the joints between threads or processes.
 #include "kernels/joint_forces.hpp"
 
 #ifdef __AVX2__
@@ -121,11 +123,12 @@ MaterialV load_materials(const JointArgs& a, const size_t joint[4]) {
 
 struct Sums {  // per-joint accumulators over the points
   V4 F[3][3], mean_o, mean_s, energy, damage, normal, shear, failed, short_any;
-  V4 slider;  // some point is damaged and its material has residual friction: the scalar path's job
-  size_t damage_onsets;  // points whose history left 0
+  V4 slider;      // some point is damaged and its material has residual friction: the scalar path's job
+  int onsets[4];  // per lane: points whose history left 0
 };
 
-void integrate(const JointArgs& a, const size_t joint[4], int count, const GeometryV& g, const MaterialV& m,
+// Updates the histories of the lanes in `keep` only.
+void integrate(const JointArgs& a, const size_t joint[4], int keep, const GeometryV& g, const MaterialV& m,
                const ScalesV& k, double Z, Sums& t) {
   const JointRule& rule = *a.rule;
   const size_t P = static_cast<size_t>(rule.points);
@@ -137,7 +140,7 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
   t.mean_o = t.mean_s = t.energy = t.damage = t.normal = t.shear = t.failed = zero;
   t.short_any = k.short_normal;
   t.slider = zero;
-  t.damage_onsets = 0;
+  for (int& n : t.onsets) n = 0;
   const V4 has_friction = L::greater(m.residual_friction, zero);
   for (size_t q = 0; q < P; ++q) {
     const double N0 = rule.N[q][0], N1 = rule.N[q][1], N2 = rule.N[q][2], w = rule.w[q];
@@ -151,10 +154,11 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
     joint_law::settle_tractions(r);
     alignas(32) double updated[4];
     _mm256_store_pd(updated, r.d_max);
-    for (int l = 0; l < count; ++l) {
-      t.damage_onsets += history[l][q] == 0.0 && updated[l] > 0.0;
-      history[l][q] = updated[l];
-    }
+    for (int l = 0; l < 4; ++l)
+      if (keep & (1 << l)) {
+        t.onsets[l] += history[l][q] == 0.0 && updated[l] > 0.0;
+        history[l][q] = updated[l];
+      }
     t.failed += simd::keep(_mm256_cmp_pd(r.d_max, L::splat(1.0), _CMP_GE_OQ), L::splat(1.0));
     t.short_any = L::either(t.short_any, r.short_shear);
     t.slider = L::either(t.slider, L::both(has_friction, L::greater(r.d_max, zero)));
@@ -173,29 +177,53 @@ void integrate(const JointArgs& a, const size_t joint[4], int count, const Geome
   }
 }
 
-void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointStatus& status) {
+// The lanes of `keep` stored; the lanes are the joints joint[0] + l.
+void store_lanes(const JointArgs& a, size_t j0, int keep, const V4 f[9], V4 damage, V4 energy,
+                 const Sums& t) {
+  alignas(32) double v[13][4];
+  for (int k = 0; k < 9; ++k) _mm256_store_pd(v[k], f[k]);
+  _mm256_store_pd(v[9], t.mean_o);
+  _mm256_store_pd(v[10], t.mean_s);
+  _mm256_store_pd(v[11], damage);
+  _mm256_store_pd(v[12], energy);
+  for (int l = 0; l < 4; ++l) {
+    if (!(keep & (1 << l))) continue;
+    const size_t j = j0 + static_cast<size_t>(l);
+    for (int k = 0; k < 9; ++k) a.corner_force[9 * j + static_cast<size_t>(k)] = v[k][l];
+    if (!a.opening.empty()) a.opening[j] = v[9][l];
+    if (!a.slip.empty()) a.slip[j] = v[10][l];
+    if (!a.damage.empty()) a.damage[j] = v[11][l];
+    if (!a.stored_energy.empty()) a.stored_energy[j] = v[12][l];
+  }
+}
+
+// Stores the lanes of `keep`: the first `count` lanes (the fast stores) or some of them (lane by lane).
+void store(const JointArgs& a, const size_t joint[4], int count, int keep, Sums& t, JointStatus& status) {
   const size_t j0 = joint[0];
-  const int real = (1 << count) - 1;
-  status.short_softening += static_cast<size_t>(__builtin_popcount(lanes(t.short_any) & real));
-  status.damage_onsets += t.damage_onsets;
-  if (!a.opening.empty()) simd::store1(t.mean_o, a.opening.data() + j0, count);
-  if (!a.slip.empty()) simd::store1(t.mean_s, a.slip.data() + j0, count);
+  status.short_softening += static_cast<size_t>(__builtin_popcount(lanes(t.short_any) & keep));
+  for (int l = 0; l < 4; ++l)
+    if (keep & (1 << l)) status.damage_onsets += static_cast<size_t>(t.onsets[l]);
   const V4 breaks = _mm256_cmp_pd(t.failed, L::splat(a.rule->fail_count), _CMP_GE_OQ);
   const V4 intact = _mm256_xor_pd(breaks, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
   V4 f[9];  // side B's corners; side A's are minus these and not stored
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 3; ++c) f[3 * i + c] = simd::keep(intact, t.F[i][c]);
-  double* out = a.corner_force.data() + 9 * j0;
-  simd::store_block4(f, out, 9, count);
-  simd::store_block4(f + 4, out + 4, 9, count);
-  alignas(32) double last[4];
-  _mm256_store_pd(last, f[8]);
-  for (int l = 0; l < count; ++l) out[9 * l + 8] = last[l];
-  if (!a.damage.empty())
-    simd::store1(simd::select(breaks, L::splat(1.0), t.damage), a.damage.data() + j0, count);
-  if (!a.stored_energy.empty())
-    simd::store1(simd::keep(intact, t.energy), a.stored_energy.data() + j0, count);
-  const int broke = lanes(breaks) & real;
+  const V4 damage = simd::select(breaks, L::splat(1.0), t.damage), stored = simd::keep(intact, t.energy);
+  if (keep == (1 << count) - 1) {
+    if (!a.opening.empty()) simd::store1(t.mean_o, a.opening.data() + j0, count);
+    if (!a.slip.empty()) simd::store1(t.mean_s, a.slip.data() + j0, count);
+    double* out = a.corner_force.data() + 9 * j0;
+    simd::store_block4(f, out, 9, count);
+    simd::store_block4(f + 4, out + 4, 9, count);
+    alignas(32) double last[4];
+    _mm256_store_pd(last, f[8]);
+    for (int l = 0; l < count; ++l) out[9 * l + 8] = last[l];
+    if (!a.damage.empty()) simd::store1(damage, a.damage.data() + j0, count);
+    if (!a.stored_energy.empty()) simd::store1(stored, a.stored_energy.data() + j0, count);
+  } else {
+    store_lanes(a, j0, keep, f, damage, stored, t);
+  }
+  const int broke = lanes(breaks) & keep;
   if (broke == 0) return;
   alignas(32) double normal[4], shear[4], energy[4];
   _mm256_store_pd(normal, t.normal);
@@ -208,36 +236,39 @@ void store(const JointArgs& a, const size_t joint[4], int count, Sums& t, JointS
                                  energy[l], status);
 }
 
-void scalar_group(const JointArgs& a, const size_t joint[4], int count, JointStatus& status) {
-  for (int l = 0; l < count; ++l) status += joint_forces_scalar(a, joint[l], joint[l] + 1);
-}
-
+// The joints of the group that the vector path takes (`keep`); the others, one by one, through the scalar
+// path: broken ones, degenerate ones, and those whose residual-friction slider (joint_law.hpp) engages,
+// from their state before this call.
 void process_group(const JointArgs& a, const size_t joint[4], int count, double Z, JointStatus& status) {
-  for (int l = 0; l < count; ++l)
-    if (a.broken[joint[l]] != 0) return scalar_group(a, joint, count, status);
-  GeometryV g;
-  load_geometry(a, joint, g);
-  if ((lanes(g.ok) & ((1 << count) - 1)) != (1 << count) - 1) return scalar_group(a, joint, count, status);
-  const MaterialV m = load_materials(a, joint);
-  const ScalesV k = joint_law::scales(m, g.h, a.softening, Z);
-  // The residual-friction slider keeps a slip history (joint_law.hpp): a group with such a point goes
-  // through the scalar path from its state before this call. Damaged joints are few, and a group without
-  // residual friction (most scenes) saves nothing.
   const int real = (1 << count) - 1;
-  const bool may_slide = (lanes(L::greater(m.residual_friction, L::splat(0.0))) & real) != 0;
-  const size_t P = static_cast<size_t>(a.rule->points);
-  double saved[4][kMaxJointPoints];
-  if (may_slide)
-    for (int l = 0; l < count; ++l)
-      for (size_t q = 0; q < P; ++q) saved[l][q] = a.d_max[P * joint[l] + q];
-  Sums t;
-  integrate(a, joint, count, g, m, k, Z, t);
-  if (may_slide && (lanes(t.slider) & real) != 0) {
-    for (int l = 0; l < count; ++l)
-      for (size_t q = 0; q < P; ++q) a.d_max[P * joint[l] + q] = saved[l][q];
-    return scalar_group(a, joint, count, status);
+  int keep = real;
+  for (int l = 0; l < count; ++l)
+    if (a.broken[joint[l]] != 0) keep &= ~(1 << l);
+  if (keep != 0) {
+    GeometryV g;
+    load_geometry(a, joint, g);
+    keep &= lanes(g.ok);
+    if (keep != 0) {
+      const MaterialV m = load_materials(a, joint);
+      const ScalesV k = joint_law::scales(m, g.h, a.softening, Z);
+      const bool may_slide = (lanes(L::greater(m.residual_friction, L::splat(0.0))) & keep) != 0;
+      const size_t P = static_cast<size_t>(a.rule->points);
+      double saved[4][kMaxJointPoints];
+      if (may_slide)
+        for (int l = 0; l < count; ++l)
+          for (size_t q = 0; q < P; ++q) saved[l][q] = a.d_max[P * joint[l] + q];
+      Sums t;
+      integrate(a, joint, keep, g, m, k, Z, t);
+      const int slide = may_slide ? lanes(t.slider) & keep : 0;
+      for (int l = 0; l < count; ++l)
+        if (slide & (1 << l))
+          for (size_t q = 0; q < P; ++q) a.d_max[P * joint[l] + q] = saved[l][q];
+      keep &= ~slide;
+      if (keep != 0) store(a, joint, count, keep, t, status);
+    }
   }
-  store(a, joint, count, t, status);
+  for (int l = 0; l < count; ++l)
+    if ((real & ~keep) & (1 << l)) status += joint_forces_scalar(a, joint[l], joint[l] + 1);
 }
 
 }  // namespace

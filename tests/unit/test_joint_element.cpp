@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -511,6 +512,46 @@ TEST(JointForces, VectorMatchesScalarReference) {
         worst = std::max(worst, w);
       }
     record(points == 3 ? "worst_relative_difference_3" : "worst_relative_difference_7", worst);
+  }
+}
+
+// What a joint computes must not depend on the joints it shares a 4-wide group with (a split run puts it
+// beside other joints than one process does): one call over all the random joints (broken, degenerate,
+// damaged, with residual friction among them) against calls over pieces of 1..9 joints, whose groups hold
+// other neighbours, give the same bits in every output.
+TEST(JointForces, EachJointTakesTheSameBitsWhateverItsGroupHolds) {
+  auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  for (int points : {3, 7}) {
+    const RandomJoints joints = random_joints(points);
+    for (Softening rule : {Softening::energy_exact, Softening::y_compatible})
+      for (bool offsets : {false, true}) {
+        SCOPED_TRACE(testing::Message()
+                     << points << " points, rule " << static_cast<int>(rule) << ", offsets " << offsets);
+        Outcome whole, pieces;
+        run_random(joints, rule, offsets, &joint_forces, false, whole);
+        run_random(joints, rule, offsets, &joint_forces, true, pieces);
+        EXPECT_GT(whole.status.broke, 50u);
+        EXPECT_TRUE(same_bits(whole.d_max, pieces.d_max));
+        EXPECT_TRUE(same_bits(whole.force, pieces.force));
+        EXPECT_TRUE(same_bits(whole.opening, pieces.opening));
+        EXPECT_TRUE(same_bits(whole.slip, pieces.slip));
+        EXPECT_TRUE(same_bits(whole.damage, pieces.damage));
+        EXPECT_TRUE(same_bits(whole.energy, pieces.energy));
+        EXPECT_TRUE(same_bits(whole.anchor, pieces.anchor));
+        EXPECT_EQ(whole.broken, pieces.broken);
+        ASSERT_EQ(whole.count.load(), pieces.count.load());
+        for (size_t e = 0; e < whole.count.load(); ++e) {
+          EXPECT_EQ(whole.breaks[e].joint, pieces.breaks[e].joint);
+          EXPECT_EQ(std::memcmp(&whole.breaks[e].released_energy, &pieces.breaks[e].released_energy,
+                                sizeof(double)),
+                    0);
+        }
+        EXPECT_EQ(whole.status.damage_onsets, pieces.status.damage_onsets);
+        EXPECT_EQ(whole.status.short_softening, pieces.status.short_softening);
+        EXPECT_EQ(whole.status.degenerate, pieces.status.degenerate);
+      }
   }
 }
 

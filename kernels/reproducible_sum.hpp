@@ -16,7 +16,9 @@
 // then be redone on a wider grid.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 
 namespace rift::kernels {
 
@@ -62,5 +64,23 @@ struct ReproducibleSum {
   }
   double value() const { return first + second; }
 };
+
+// The order-free sum of n terms that are all at hand (a column, or one partial sum per fixed unit of work):
+// their largest magnitude first, then the sum on the grid it gives, so nothing is carried from one call to
+// the next. term(i) must return the same value both times it is called. A non-finite term makes the
+// result non-finite.
+template <class Term>
+double reproducible_total(size_t n, Term&& term) {
+  double max_abs = 0.0;
+  for (size_t i = 0; i < n; ++i) max_abs = std::max(max_abs, std::abs(term(i)));
+  const ReproducibleGrid grid = reproducible_grid(max_abs, static_cast<int64_t>(n));
+  ReproducibleSum sum;
+  for (size_t i = 0; i < n; ++i) sum.add(term(i), grid);
+  return sum.value();
+}
+
+inline double reproducible_total(std::span<const double> terms) {
+  return reproducible_total(terms.size(), [&](size_t i) { return terms[i]; });
+}
 
 }  // namespace rift::kernels

@@ -7,13 +7,15 @@
 
 #include "engine/schedule/parallel.hpp"
 #include "kernels/node_integration.hpp"
+#include "kernels/reproducible_sum.hpp"
 #include "systems/solid_tables.hpp"
 
 namespace rift {
 
 namespace {
-constexpr size_t grain = 4096;
-}
+constexpr size_t grain = 4096;  // a multiple of the sum unit
+constexpr size_t kUnitTets = NodeIntegrationSystem::kSumUnitNodes / 4;
+}  // namespace
 
 NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoundarySpec> conditions,
                                              std::array<double, 3> gravity, TimeFunction mass_damping)
@@ -24,7 +26,7 @@ NodeIntegrationSystem::NodeIntegrationSystem(Store& store, std::vector<SolidBoun
       damped_(mass_damping_.highest() > 0.0) {
   prescribed_.assign(3 * std::max<size_t>(conditions_.size(), 1), 0.0);
   const size_t nodes = store_.table(solid::node_table).size();
-  blocks_.resize((nodes + grain - 1) / grain);
+  unit_results_.resize((nodes + kSumUnitNodes - 1) / kSumUnitNodes);
 }
 
 void NodeIntegrationSystem::gather(NodeForceSource source) {
@@ -104,20 +106,30 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
     run_fused(args, slots, ctx);
   else
     parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {
-      blocks_[begin / grain] = kernels::integrate_nodes(args, slots, begin, end);
+      for (size_t first = begin; first < end; first += kSumUnitNodes)
+        unit_results_[first / kSumUnitNodes] =
+            kernels::integrate_nodes(args, slots, first, std::min(end, first + kSumUnitNodes));
     });
-  kernels::NodeStepResult total;
-  for (const auto& b : blocks_) total += b;  // fixed block order: deterministic
-  non_finite_ = total.non_finite;
+  book_totals();
+}
+
+// The units' work and damping, each added order-free; the count of non-finite nodes is exact anyway.
+void NodeIntegrationSystem::book_totals() {
+  non_finite_ = 0;
+  for (const auto& u : unit_results_) non_finite_ += u.non_finite;
+  const size_t units = unit_results_.size();
   Table& energy = store_.table(solid::energy_table);
   bool booked[kNodeForceBooks] = {};
   for (const NodeForceRouteEntry& e : kNodeForceRoute) {
     const size_t b = static_cast<size_t>(e.book);
     if (!uses(e) || booked[b]) continue;
     booked[b] = true;
-    energy.span<double>(kBookWork[b])[0] += total.work[b];
+    energy.span<double>(kBookWork[b])[0] +=
+        kernels::reproducible_total(units, [&](size_t u) { return unit_results_[u].work[b]; });
   }
-  if (damped_) solid::energy::damping.in(energy)[0] += total.damping;
+  if (damped_)
+    solid::energy::damping.in(energy)[0] +=
+        kernels::reproducible_total(units, [&](size_t u) { return unit_results_[u].damping; });
 }
 
 void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
@@ -132,26 +144,29 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
     const size_t thread = static_cast<size_t>(tbb::this_task_arena::current_thread_index());
     const std::span<double> scratch(reinterpret_cast<double*>(scratch_.data()) + thread * per_thread,
                                     per_thread);
-    kernels::NodeStepResult result;
     TetForceSystem::Tally tally;
     for (size_t p = block_first_piece_[b]; p < block_first_piece_[b + 1]; ++p) {
       const Piece& piece = pieces_[p];
       if (piece.tet_end == piece.tet_begin) {
-        result = kernels::integrate_nodes(args, slots, piece.node_begin, piece.node_end, result);
+        unit_results_[piece.first_unit] =
+            kernels::integrate_nodes(args, slots, piece.node_begin, piece.node_end);
         continue;
       }
       // The run's corner forces go to scratch, and its nodes gather per tet (kernels/node_integration.hpp).
       TetForceSystem::fused_forces(tet_args, piece.tet_begin, piece.tet_end, scratch, tally);
       const kernels::PrivateTetForces tets{scratch,     piece.tet_begin, piece.node_begin, slots.source[1],
                                            face_joint_, face_corners_,   loaded_};
-      result = kernels::integrate_private_tets(args, tets, slots, piece.tet_begin, piece.tet_end, result);
+      size_t unit = piece.first_unit;
+      for (size_t first = piece.tet_begin; first < piece.tet_end; first += kUnitTets)
+        unit_results_[unit++] = kernels::integrate_private_tets(args, tets, slots, first,
+                                                                std::min(piece.tet_end, first + kUnitTets));
     }
-    blocks_[b] = result;
     fused_tallies_[b] = tally;
   });
   TetForceSystem::Tally total;
-  for (const auto& t : fused_tallies_) total += t;  // fixed block order: deterministic
-  fused_->book(ctx, total);
+  for (const auto& t : fused_tallies_) total += t;  // order-free: counts, a lowest index and a largest term
+  fused_->book(total);
+  fused_->book_damping(ctx);
 }
 
 size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
@@ -186,25 +201,26 @@ size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
       last->tet_end = e + 1;
       last->node_end = first + 4;
     } else if (!last || first >= last->node_end) {  // pieces go in node order
-      runs.push_back({first, first + 4, e, e + 1});
+      runs.push_back({first, first + 4, e, e + 1, 0});
     }
   }
   if (runs.empty() || !build_face_table(runs)) return 0;
 
-  // Pieces in node order, plain ones cut at the multiples of grain; blocks of about grain nodes.
+  // Pieces in node order, plain ones cut at the multiples of a sum unit; blocks of about grain nodes.
   pieces_.clear();
-  size_t next = 0;
+  size_t next = 0, units = 0;
   auto add_plain = [&](size_t end) {
     while (next < end) {
-      const size_t stop = std::min(end, (next / grain + 1) * grain);
-      pieces_.push_back({next, stop, 0, 0});
+      const size_t stop = std::min(end, (next / kSumUnitNodes + 1) * kSumUnitNodes);
+      pieces_.push_back({next, stop, 0, 0, units++});
       next = stop;
     }
   };
   std::vector<std::pair<size_t, size_t>> handed;
   for (const Piece& r : runs) {
     add_plain(r.node_begin);
-    pieces_.push_back(r);
+    pieces_.push_back({r.node_begin, r.node_end, r.tet_begin, r.tet_end, units});
+    units += (r.tet_end - r.tet_begin + kUnitTets - 1) / kUnitTets;
     next = r.node_end;
     if (!handed.empty() && handed.back().second == r.tet_begin)
       handed.back().second = r.tet_end;
@@ -223,8 +239,8 @@ size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {
     in_block += count;
   }
   block_first_piece_.push_back(pieces_.size());
-  blocks_.assign(block_first_piece_.size() - 1, {});
-  fused_tallies_.assign(blocks_.size(), {});
+  unit_results_.assign(units, {});
+  fused_tallies_.assign(block_first_piece_.size() - 1, {});
   tet_system.hand_over(handed);
   fused_ = &tet_system;
   size_t fused_tets = 0;

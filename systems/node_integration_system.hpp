@@ -36,6 +36,10 @@ class NodeIntegrationSystem : public System {
   // how many tets were handed over.
   size_t fuse_tet_forces(TetForceSystem& tets);
   static constexpr size_t kFusedTets = 128;  // 12 KB of corner forces: stays in L1 until the nodes read it
+  // The energy sums' unit: up to 64 nodes (16 of a fused run's tets) whose work terms are added in a row,
+  // in node order; the units' sums are then added order-free (kernels/reproducible_sum.hpp), so a split
+  // of the units between threads or processes books the same bits. Units are cut from the mesh alone.
+  static constexpr size_t kSumUnitNodes = 64;
 
  private:
   Store& store_;
@@ -44,7 +48,7 @@ class NodeIntegrationSystem : public System {
   TimeFunction mass_damping_;
   bool damped_ = false;             // the damping is positive at some time: its dissipation is booked
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
-  std::vector<kernels::NodeStepResult> blocks_;
+  std::vector<kernels::NodeStepResult> unit_results_;  // one per sum unit, in node order
   size_t non_finite_ = 0;
   bool gathered_[std::size(kNodeForceRoute)] = {};  // per route entry: its node rows are gathered
   // Slot sources are gathered when their table exists, node rows when asked to (gather()).
@@ -52,11 +56,14 @@ class NodeIntegrationSystem : public System {
     return e.rows == NodeForceRows::slots ? store_.has(e.table) : gathered_[static_cast<size_t>(e.source)];
   }
 
-  // With fused tets (fuse_tet_forces): the nodes cut into pieces, each either plain nodes or the nodes of a
-  // run of tets [tet_begin, tet_end); pieces grouped into blocks of about `grain` nodes, in node order.
+  // With fused tets (fuse_tet_forces): the nodes cut into pieces, each either plain nodes (one sum unit) or
+  // the nodes of a run of tets [tet_begin, tet_end) (a unit per kSumUnitNodes / 4 tets); pieces grouped into
+  // blocks of about `grain` nodes, in node order.
   struct Piece {
     size_t node_begin, node_end, tet_begin, tet_end;  // tet_begin == tet_end: no tets
+    size_t first_unit;
   };
+  void book_totals();
   void run_fused(const kernels::NodeIntegrationArgs& args, const kernels::ForceSlots& slots,
                  const StepContext& ctx);
   bool build_face_table(const std::vector<Piece>& runs);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
+#include "kernels/reproducible_sum.hpp"
 #include "systems/solid_partition_work.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -59,9 +60,8 @@ SolidModel::SolidModel(Store& store, const TetMesh& mesh, const SolidSpec& spec)
     // Evaluate the joints once in the initial configuration: their stored energy there (the in-situ
     // state) is the zero of the energy balance.
     joint_forces_->run(StepContext{0, 0.0, 0.0});
-    double stored = 0.0;
-    for (double e : solid::joint::stored_energy.read(store_)) stored += e;
-    solid::energy::joint_energy0.in(store_)[0] = stored;
+    solid::energy::joint_energy0.in(store_)[0] =
+        kernels::reproducible_total(solid::joint::stored_energy.read(store_));
     Table& joints = store_.table(solid::joint_table);
     const Table& nodes = store_.table(solid::node_table);
     joint_stable_dt_ = kernels::joint_stable_step(

@@ -8,6 +8,7 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/scene/output_fields.hpp"
 #include "engine/scene/suggest.hpp"
+#include "kernels/reproducible_sum.hpp"
 #include "systems/node_force_route.hpp"
 #include "systems/solid_model.hpp"
 #include "systems/solid_tables.hpp"
@@ -120,19 +121,20 @@ SolidEnergies SolidModel::energies() const {
   const Table& nodes = store_.table(solid::node_table);
   const auto v = solid::node::v.read(nodes);
   const auto m = solid::node::mass.read(nodes);
+  // The sums over rows are order-free (kernels/reproducible_sum.hpp), as the step's energy books are: the
+  // same bits whichever process holds which rows.
   SolidEnergies e;
-  for (size_t n = 0; n < nodes.size(); ++n)
-    e.kinetic +=
-        0.5 * m[n] * (v[3 * n] * v[3 * n] + v[3 * n + 1] * v[3 * n + 1] + v[3 * n + 2] * v[3 * n + 2]);
-  for (double w : solid::tet::energy.read(store_)) e.elastic += w;
+  e.kinetic = kernels::reproducible_total(nodes.size(), [&](size_t n) {
+    return 0.5 * m[n] * (v[3 * n] * v[3 * n] + v[3 * n + 1] * v[3 * n + 1] + v[3 * n + 2] * v[3 * n + 2]);
+  });
+  e.elastic = kernels::reproducible_total(solid::tet::energy.read(store_));
   const Table& book = store_.table(solid::energy_table);
   // Kinetic energy at t = 0 (an initial velocity) counts as work done before the run.
   e.external_work = solid::energy::external_work.read(book)[0] + solid::energy::kinetic0.read(book)[0];
   e.damping = solid::energy::damping.read(book)[0];
   if (store_.has(solid::joint_table)) {
-    double stored = 0.0;
-    for (double w : solid::joint::stored_energy.read(store_)) stored += w;
-    e.joint_stored = stored - solid::energy::joint_energy0.read(book)[0];
+    e.joint_stored = kernels::reproducible_total(solid::joint::stored_energy.read(store_)) -
+                     solid::energy::joint_energy0.read(book)[0];
     // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took,
     // less what broken joints still held when they broke (summed in the log's order: deterministic).
     for (double w : solid::event::released_energy.read(store_)) e.break_release += w;

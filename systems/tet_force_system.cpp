@@ -1,6 +1,7 @@
 #include "systems/tet_force_system.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/schedule/parallel.hpp"
 #include "systems/solid_tables.hpp"
@@ -9,6 +10,13 @@ namespace rift {
 
 namespace {
 constexpr size_t grain = 1024;
+constexpr size_t damping_grain = 16 * grain;  // the damping's sum: one column of 8 B a tet
+
+double largest_abs(std::span<const double> x, size_t begin, size_t end) {
+  double m = 0.0;
+  for (size_t e = begin; e < end; ++e) m = std::max(m, std::abs(x[e]));
+  return m;
+}
 
 // [begin, end) cut at the multiples of grain.
 void add_runs(size_t begin, size_t end, std::vector<std::pair<size_t, size_t>>& runs) {
@@ -25,15 +33,17 @@ TetForceSystem::Tally& TetForceSystem::Tally::operator+=(const Tally& o) {
       (status.first_inverted < 0 || o.status.first_inverted < status.first_inverted))
     status.first_inverted = o.status.first_inverted;
   status.inverted += o.status.inverted;
-  viscous_power += o.viscous_power;
+  largest_viscous_power = std::max(largest_viscous_power, o.largest_viscous_power);
   return *this;
 }
 
 TetForceSystem::TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials,
                                std::vector<double> initial_stress)
     : store_(store), materials_(std::move(materials)), initial_stress_(std::move(initial_stress)) {
-  add_runs(0, store_.table(solid::tet_table).size(), own_runs_);
+  const size_t tets = store_.table(solid::tet_table).size();
+  add_runs(0, tets, own_runs_);
   set_blocks();
+  damping_parts_.resize((tets + damping_grain - 1) / damping_grain);
 }
 
 // Runs of the same grain-aligned stretch of tets form a block: without hand_over, exactly the blocks of
@@ -82,25 +92,43 @@ void TetForceSystem::run(const StepContext& ctx) {
       const auto [begin, end] = own_runs_[r];
       Tally run;
       run.status = kernels::tet_forces(a, begin, end);
-      for (size_t e = begin; e < end; ++e) run.viscous_power += a.viscous_power[e];
+      run.largest_viscous_power = largest_abs(a.viscous_power, begin, end);
       t += run;
     }
   });
   inverted_ = 0;
   first_inverted_ = -1;
+  largest_viscous_power_ = 0.0;
   Tally total;
-  for (const Tally& t : tallies_) total += t;  // fixed block order: deterministic
-  book(ctx, total);
+  for (const Tally& t : tallies_) total += t;
+  book(total);
+  if (!handed_over_) book_damping(ctx);
 }
 
-void TetForceSystem::book(const StepContext& ctx, const Tally& tally) {
+void TetForceSystem::book(const Tally& tally) {
   Tally seen;
   seen.status = {inverted_, first_inverted_};
+  seen.largest_viscous_power = largest_viscous_power_;
   seen += tally;
   inverted_ = seen.status.inverted;
   first_inverted_ = seen.status.first_inverted;
-  // The damping force of this step acts over dt (the work integral's rectangle rule).
-  solid::energy::damping.in(store_)[0] += ctx.dt * tally.viscous_power;
+  largest_viscous_power_ = seen.largest_viscous_power;
+}
+
+// The damping force of this step acts over dt (the work integral's rectangle rule). Every power is a
+// multiple of the grid's quantum once pre-rounded, so the blocks' sums merge exactly in any order.
+void TetForceSystem::book_damping(const StepContext& ctx) {
+  const std::span<const double> power = solid::tet::viscous_power.read(store_);
+  const kernels::ReproducibleGrid grid =
+      kernels::reproducible_grid(largest_viscous_power_, static_cast<int64_t>(power.size()));
+  parallel_for(power.size(), damping_grain, [&](size_t begin, size_t end) {
+    kernels::ReproducibleSum part;
+    for (size_t e = begin; e < end; ++e) part.add(power[e], grid);
+    damping_parts_[begin / damping_grain] = part;
+  });
+  kernels::ReproducibleSum total;
+  for (const auto& part : damping_parts_) total += part;
+  solid::energy::damping.in(store_)[0] += ctx.dt * total.value();
 }
 
 void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ranges) {
@@ -112,6 +140,7 @@ void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ran
   }
   add_runs(next, store_.table(solid::tet_table).size(), own_runs_);
   set_blocks();
+  handed_over_ = !ranges.empty();
 }
 
 void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t end,
@@ -120,7 +149,7 @@ void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t 
   a.corner_force_first = begin;
   Tally t;
   t.status = kernels::tet_forces(a, begin, end);
-  for (size_t e = begin; e < end; ++e) t.viscous_power += a.viscous_power[e];
+  t.largest_viscous_power = largest_abs(a.viscous_power, begin, end);
   tally += t;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Internal forces of the tetrahedra (compressible neo-Hookean + viscous damping + in-situ stress,
 // kernels/tet_forces). Reads node positions and velocities, writes each tet's corner forces, stress,
-// elastic energy and viscous power, and books the damping dissipation of the step in solid_energy.
+// elastic energy and viscous power, and books the damping dissipation of the step in solid_energy: the
+// tets' viscous powers added order-free (kernels/reproducible_sum.hpp), so that any split of the tets
+// between threads or processes books the same bits.
 //
 // Tets with nodes of their own (a fracture zone's, numbered 4 in a row) may be handed over to the node
 // pass (NodeIntegrationSystem::fuse_tet_forces): it computes their forces with fused_forces() right before
@@ -12,6 +14,7 @@
 
 #include "engine/core/table.hpp"
 #include "engine/schedule/system.hpp"
+#include "kernels/reproducible_sum.hpp"
 #include "kernels/tet_forces.hpp"
 
 namespace rift {
@@ -29,11 +32,12 @@ class TetForceSystem : public System {
   size_t inverted() const { return inverted_; }
   int64_t first_inverted() const { return first_inverted_; }
 
-  // What the tet pass books besides the forces: inverted tets and the viscous power [W].
+  // What the tet pass books besides the forces: inverted tets and the largest viscous power [W] (the grid
+  // of the order-free sum of the powers).
   struct Tally {
     kernels::TetForceStatus status;
-    double viscous_power = 0.0;
-    Tally& operator+=(const Tally& o);  // in a fixed order: deterministic
+    double largest_viscous_power = 0.0;
+    Tally& operator+=(const Tally& o);  // in any order: counts, a lowest index and a maximum
   };
   // From the next step on, run() skips tets [begin, end) of each range (sorted, disjoint); the node pass
   // computes them. Before the step graph is built.
@@ -45,9 +49,11 @@ class TetForceSystem : public System {
   // first), stress and energy (when observed) and viscous power into their columns; adds to tally.
   static void fused_forces(kernels::TetForceArgs a, size_t begin, size_t end, std::span<double> scratch,
                            Tally& tally);
-  // Books a tally into this step's inverted count and damping: run()'s own, then the node pass's for the
-  // handed-over tets (after run()).
-  void book(const StepContext& ctx, const Tally& tally);
+  // Books a tally into this step's inverted count: run()'s own, then the node pass's for the handed-over
+  // tets (after run()). Then, once every tet's power of the step is in its column, book_damping() adds
+  // dt times their sum to the damping: run() calls it when no tets are handed over, else the node pass.
+  void book(const Tally& tally);
+  void book_damping(const StepContext& ctx);
   // The tets' columns the node pass reads and writes when it computes handed-over tets.
   Access fused_access() const;
 
@@ -61,9 +67,12 @@ class TetForceSystem : public System {
   std::vector<std::pair<size_t, size_t>> own_runs_;
   std::vector<size_t> block_first_run_;
   std::vector<Tally> tallies_;
+  std::vector<kernels::ReproducibleSum> damping_parts_;  // one per block of the damping's sum
   void set_blocks();
+  bool handed_over_ = false;
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;
+  double largest_viscous_power_ = 0.0;  // this step's
 };
 
 }  // namespace rift

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -113,6 +114,30 @@ TEST(ReproducibleSum, TermsBeyondTheBoundAreCountedAndZerosNever) {
   EXPECT_EQ(z.exceeded, 1);
   EXPECT_EQ(reproducible_grid(1e300, 1 << 20).bound, 0.0);  // beyond what a grid of doubles spans
   EXPECT_EQ(reproducible_grid(std::nan(""), 5).bound, 0.0);
+}
+
+TEST(ReproducibleTotal, TermsAtHandSumToOneBitPatternInAnyOrderWithNoBoundGiven) {
+  std::vector<double> x = mixed_terms(20000, 11);
+  auto total = [&] { return reproducible_total(x.size(), [&](size_t i) { return x[i]; }); };
+  const double first = total();
+  std::mt19937 rng(2);
+  for (int round = 0; round < 6; ++round) {
+    std::shuffle(x.begin(), x.end(), rng);
+    EXPECT_EQ(bits(total()), bits(first));
+  }
+  // The same as a split sum on the grid of the same bound: the total is that sum, not another rounding.
+  const ReproducibleGrid g = reproducible_grid(max_abs(x), int64_t(x.size()));
+  EXPECT_EQ(bits(split_sum(x, g, 3, rng)), bits(first));
+  EXPECT_EQ(reproducible_total(0, [](size_t) { return 1.0; }), 0.0);
+  const std::vector<double> zeros(5, 0.0);
+  EXPECT_EQ(reproducible_total(zeros.size(), [&](size_t i) { return zeros[i]; }), 0.0);
+}
+
+TEST(ReproducibleTotal, ANonFiniteTermMakesTheTotalNonFinite) {
+  for (double bad : {std::numeric_limits<double>::infinity(), std::nan("")}) {
+    std::vector<double> x{1.0, -2.0, bad, 3.0};
+    EXPECT_FALSE(std::isfinite(reproducible_total(x.size(), [&](size_t i) { return x[i]; }))) << bad;
+  }
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ double exchange_seconds(const PartHalo& p, int32_t ranks, int32_t node_bytes, co
 
 PartitionReport report_partition(const PartitionWork& work, int32_t ranks, const NetworkModel& network) {
   const TetPartition partition = partition_tets(work.graph_tets, ranks, work.tet_weight);
-  HaloPlan plan = plan_halo(ranks, partition.part, work.nodes, work.elements);
+  HaloPlan plan = plan_halo(ranks, partition.part, work.nodes, work.elements, work.node_units);
   PartitionReport r;
   r.domain = work.domain;
   r.timed = work.timed;

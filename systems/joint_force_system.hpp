@@ -5,6 +5,8 @@
 // so the log is the same on any thread count. Broken joints write zero force from then on; their two
 // tets are the contact model's to handle.
 #include <atomic>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/core/table.hpp"
@@ -26,6 +28,9 @@ class JointForceSystem : public System {
   kernels::Softening softening() const { return softening_; }
   size_t degenerate() const { return degenerate_; }  // joints with a collapsed mid-surface, last step
   size_t short_softening() const { return short_softening_; }
+  // From the next step on, computes only the joints of `joints` (ascending): a process's share of a split
+  // run (engine/mesh/halo_plan.hpp).
+  void compute_only(std::span<const int32_t> joints);
 
  private:
   void record_events(const StepContext& ctx, size_t count);
@@ -34,6 +39,10 @@ class JointForceSystem : public System {
   std::vector<kernels::JointMaterial> materials_;
   const kernels::JointRule* rule_;
   kernels::Softening softening_;
+  // The joints computed: runs of consecutive joints cut at the multiples of the grain; block b covers runs
+  // [block_first_run_[b], block_first_run_[b + 1]), one status per block.
+  std::vector<std::pair<size_t, size_t>> runs_;
+  std::vector<size_t> block_first_run_;
   std::vector<kernels::JointStatus> blocks_;
   std::vector<kernels::JointBreak> breaks_;  // one slot per joint: every joint can break at most once
   std::atomic<size_t> break_count_{0};

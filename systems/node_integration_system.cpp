@@ -107,8 +107,9 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
   else
     parallel_for(nodes.size(), grain, [&](size_t begin, size_t end) {
       for (size_t first = begin; first < end; first += kSumUnitNodes)
-        unit_results_[first / kSumUnitNodes] =
-            kernels::integrate_nodes(args, slots, first, std::min(end, first + kSumUnitNodes));
+        if (!skipped(first / kSumUnitNodes))
+          unit_results_[first / kSumUnitNodes] =
+              kernels::integrate_nodes(args, slots, first, std::min(end, first + kSumUnitNodes));
     });
   book_totals();
 }
@@ -148,17 +149,23 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
     for (size_t p = block_first_piece_[b]; p < block_first_piece_[b + 1]; ++p) {
       const Piece& piece = pieces_[p];
       if (piece.tet_end == piece.tet_begin) {
-        unit_results_[piece.first_unit] =
-            kernels::integrate_nodes(args, slots, piece.node_begin, piece.node_end);
+        if (!skipped(piece.first_unit))
+          unit_results_[piece.first_unit] =
+              kernels::integrate_nodes(args, slots, piece.node_begin, piece.node_end);
         continue;
       }
+      const size_t units = (piece.tet_end - piece.tet_begin + kUnitTets - 1) / kUnitTets;
+      bool any = false;
+      for (size_t u = piece.first_unit; u < piece.first_unit + units; ++u) any |= !skipped(u);
+      if (!any) continue;
       // The run's corner forces go to scratch, and its nodes gather per tet (kernels/node_integration.hpp).
       TetForceSystem::fused_forces(tet_args, piece.tet_begin, piece.tet_end, scratch, tally);
       const kernels::PrivateTetForces tets{scratch,     piece.tet_begin, piece.node_begin, slots.source[1],
                                            face_joint_, face_corners_,   loaded_};
       size_t unit = piece.first_unit;
-      for (size_t first = piece.tet_begin; first < piece.tet_end; first += kUnitTets)
-        unit_results_[unit++] = kernels::integrate_private_tets(args, tets, slots, first,
+      for (size_t first = piece.tet_begin; first < piece.tet_end; first += kUnitTets, ++unit)
+        if (!skipped(unit))
+          unit_results_[unit] = kernels::integrate_private_tets(args, tets, slots, first,
                                                                 std::min(piece.tet_end, first + kUnitTets));
     }
     fused_tallies_[b] = tally;
@@ -167,6 +174,29 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
   for (const auto& t : fused_tallies_) total += t;  // order-free: counts, a lowest index and a largest term
   fused_->book(total);
   fused_->book_damping(ctx);
+}
+
+std::vector<int32_t> NodeIntegrationSystem::sum_units() const {
+  std::vector<int32_t> first;
+  first.reserve(unit_results_.size());
+  if (!fused_) {
+    for (size_t u = 0; u < unit_results_.size(); ++u)
+      first.push_back(static_cast<int32_t>(u * kSumUnitNodes));
+    return first;
+  }
+  for (const Piece& p : pieces_) {  // a plain piece is one unit; a run of tets one per kUnitTets
+    const size_t unit = p.tet_end > p.tet_begin ? 4 * kUnitTets : p.node_end - p.node_begin;
+    for (size_t n = p.node_begin; n < p.node_end; n += unit) first.push_back(static_cast<int32_t>(n));
+  }
+  return first;
+}
+
+void NodeIntegrationSystem::compute_only(std::span<const int32_t> owned) {
+  const std::vector<int32_t> first = sum_units();
+  unit_skipped_.assign(first.size(), 1);
+  for (size_t u = 0; u < first.size(); ++u)
+    if (std::binary_search(owned.begin(), owned.end(), first[u])) unit_skipped_[u] = 0;
+  std::fill(unit_results_.begin(), unit_results_.end(), kernels::NodeStepResult{});
 }
 
 size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {

@@ -40,6 +40,13 @@ class NodeIntegrationSystem : public System {
   // in node order; the units' sums are then added order-free (kernels/reproducible_sum.hpp), so a split
   // of the units between threads or processes books the same bits. Units are cut from the mesh alone.
   static constexpr size_t kSumUnitNodes = 64;
+  // The first node of each sum unit, ascending from 0: a split between processes keeps units whole
+  // (PartitionWork::node_units).
+  std::vector<int32_t> sum_units() const;
+  // From the next step on, integrates only the sum units whose first node is in `owned` (ascending): a
+  // process's share of a split run, whose nodes come in whole units (PartitionWork::node_units). The others
+  // keep their state and book nothing. After fuse_tet_forces.
+  void compute_only(std::span<const int32_t> owned);
 
  private:
   Store& store_;
@@ -49,6 +56,8 @@ class NodeIntegrationSystem : public System {
   bool damped_ = false;             // the damping is positive at some time: its dissipation is booked
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<kernels::NodeStepResult> unit_results_;  // one per sum unit, in node order
+  std::vector<uint8_t> unit_skipped_;                  // per sum unit: another process integrates it
+  bool skipped(size_t unit) const { return !unit_skipped_.empty() && unit_skipped_[unit] != 0; }
   size_t non_finite_ = 0;
   bool gathered_[std::size(kNodeForceRoute)] = {};  // per route entry: its node rows are gathered
   // Slot sources are gathered when their table exists, node rows when asked to (gather()).

@@ -81,6 +81,13 @@ class SolidModel : public Model {
   void add_node_mass(std::span<const double> extra);
   size_t joint_count() const;
   size_t broken_joint_count() const;
+  // From the next step on, the solid computes only a process's share of a split run (RankHalo of
+  // engine/mesh/halo_plan.hpp, planned on partition_work's solid domain with its node units): the tets and
+  // joints of the share and the sum units of its own nodes. The ghosts' positions and velocities must be
+  // brought in after each node pass, and the energy books and the guards' counts added over the processes;
+  // until a run does so, the energy guard is off in a share. Before the step graph is built. Throws Error
+  // for a scene with contact (its pairs are not split yet).
+  void compute_only(const RankHalo& share);
 
  private:
   void build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh& mesh);
@@ -116,6 +123,7 @@ class SolidModel : public Model {
   size_t fused_tets_ = 0;          // tets whose forces the node pass computes (solid.fused_tet_pass)
   std::vector<uint8_t> zone_;      // 1 per tet: in the fracture zone, i.e. with nodes of its own
   std::vector<double> tet_steps_;  // 1 per tet: its stable step (exact in the zone, else h / c_p) [s]
+  bool share_ = false;             // compute_only: one process's share of the solid
   double largest_energy_ = 0.0,
          energy_floor_ = 0.0;  // largest energy scale seen so far, for the energy guard
   std::unique_ptr<SurfaceLoadSystem> loads_;

@@ -143,6 +143,23 @@ void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ran
   handed_over_ = !ranges.empty();
 }
 
+void TetForceSystem::compute_only(std::span<const int32_t> tets) {
+  std::vector<std::pair<size_t, size_t>> kept;
+  auto next = tets.begin();
+  for (const auto& [begin, end] : own_runs_) {  // both ascending; the runs stay cut at the multiples of grain
+    next = std::lower_bound(next, tets.end(), static_cast<int32_t>(begin));
+    for (; next != tets.end() && static_cast<size_t>(*next) < end; ++next) {
+      const auto e = static_cast<size_t>(*next);
+      if (!kept.empty() && kept.back().second == e)
+        kept.back().second = e + 1;
+      else
+        kept.emplace_back(e, e + 1);
+    }
+  }
+  own_runs_ = std::move(kept);
+  set_blocks();
+}
+
 void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t end,
                                   std::span<double> scratch, Tally& tally) {
   a.corner_force = scratch;

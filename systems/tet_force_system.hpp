@@ -56,6 +56,9 @@ class TetForceSystem : public System {
   void book_damping(const StepContext& ctx);
   // The tets' columns the node pass reads and writes when it computes handed-over tets.
   Access fused_access() const;
+  // From the next step on, run() computes only the tets of `tets` (ascending) that it has not handed over:
+  // a process's share of a split run (engine/mesh/halo_plan.hpp). After hand_over.
+  void compute_only(std::span<const int32_t> tets);
 
  private:
   Store& store_;

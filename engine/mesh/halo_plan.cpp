@@ -13,9 +13,34 @@ namespace {
 
 constexpr int32_t kMaxWidth = 16;
 
-// The part that owns each node: the part of the first tet that holds it (sets[0] are the tets).
+// Every node of a unit takes the owner most of the unit's nodes have (the lowest part on a tie).
+void own_by_unit(std::vector<int32_t>& owner, std::span<const int32_t> node_units) {
+  if (node_units.empty()) return;
+  if (node_units[0] != 0)
+    throw Error(fmt::format("halo plan: the first node unit starts at node {}, not 0", node_units[0]));
+  for (size_t u = 0; u < node_units.size(); ++u) {
+    const int32_t end = u + 1 < node_units.size() ? node_units[u + 1] : int32_t(owner.size());
+    if (end <= node_units[u] || end > int32_t(owner.size()))
+      throw Error(fmt::format("halo plan: node unit {} spans nodes [{}, {}) of {}", u, node_units[u], end,
+                              owner.size()));
+    // The part holding most of the unit's nodes (the lowest such part on a tie): fewest nodes move.
+    int32_t best = owner[size_t(node_units[u])], best_count = 0;
+    for (int32_t n = node_units[u]; n < end; ++n) {
+      const int32_t candidate = owner[size_t(n)];
+      const auto count = int32_t(std::count(owner.begin() + node_units[u], owner.begin() + end, candidate));
+      if (count > best_count || (count == best_count && candidate < best)) {
+        best = candidate;
+        best_count = count;
+      }
+    }
+    std::fill(owner.begin() + node_units[u], owner.begin() + end, best);
+  }
+}
+
+// The part that owns each node: the part of the first tet that holds it (sets[0] are the tets), or its
+// unit's.
 std::vector<int32_t> node_owners(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                                 std::span<const ElementNodes> sets) {
+                                 std::span<const ElementNodes> sets, std::span<const int32_t> node_units) {
   if (parts < 1 || sets.empty()) throw Error("halo plan: needs at least one part and the tets");
   const ElementNodes& tets = sets[0];
   if (tets.width < 1 || tets.nodes.size() != tet_part.size() * size_t(tets.width))
@@ -36,6 +61,7 @@ std::vector<int32_t> node_owners(int32_t parts, std::span<const int32_t> tet_par
   const auto orphan = std::find(owner.begin(), owner.end(), -1);
   if (orphan != owner.end())
     throw Error(fmt::format("halo plan: node {} lies in none of the {}", orphan - owner.begin(), tets.name));
+  own_by_unit(owner, node_units);
   return owner;
 }
 
@@ -79,8 +105,8 @@ void sort_unique(std::vector<int32_t>& v) {
 }  // namespace
 
 HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                   std::span<const ElementNodes> sets) {
-  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets);
+                   std::span<const ElementNodes> sets, std::span<const int32_t> node_units) {
+  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets, node_units);
   HaloPlan plan;
   plan.parts.resize(size_t(parts));
   for (const ElementNodes& s : sets) plan.element_sets.push_back(s.name);
@@ -125,8 +151,8 @@ HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nod
 }
 
 RankHalo rank_halo(int32_t rank, int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                   std::span<const ElementNodes> sets) {
-  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets);
+                   std::span<const ElementNodes> sets, std::span<const int32_t> node_units) {
+  const std::vector<int32_t> owner = node_owners(parts, tet_part, nodes, sets, node_units);
   if (rank < 0 || rank >= parts) throw Error(fmt::format("halo plan: rank {} of {} parts", rank, parts));
   RankHalo h;
   h.rank = rank;

@@ -1,6 +1,8 @@
 #pragma once
 // Who computes what when a run's nodes are split between processes, and what the processes must exchange:
-// the owner-computes rule. Each node belongs to one part, the part of the first tet that holds it. A part
+// the owner-computes rule. Each node belongs to one part, the part of the first tet that holds it; where
+// nodes come in units (the node pass's energy sums add a unit's terms in a row, so one part must integrate
+// a whole unit), each node belongs to the part that holds most of its unit's nodes by that rule. A part
 // computes every element with at least one node of its own, so an element across a part boundary is
 // computed by every part it touches, redundantly and from the same inputs, hence with the same result, and
 // each part gathers its own nodes' forces in the same order as one process does. The nodes of those
@@ -36,6 +38,7 @@ struct PartitionWork {
   int32_t node_bytes = 0;
   bool timed = false;
   std::vector<ElementNodes> elements;
+  std::vector<int32_t> node_units;  // the first node of each unit, ascending from 0 (empty: every node alone)
 };
 
 struct PartHalo {
@@ -68,12 +71,13 @@ struct RankHalo {
   std::vector<std::vector<int32_t>> elements;  // per element set: the elements this part computes
 };
 
-// `tet_part` gives the part of each element of sets[0] (the tets). Throws Error when a node lies in no
-// tet, an element's node or a part is out of range, or an element has more than 16 nodes.
+// `tet_part` gives the part of each element of sets[0] (the tets); `node_units` as PartitionWork's. Throws
+// Error when a node lies in no tet, an element's node or a part is out of range, an element has more than
+// 16 nodes, or the units do not start at node 0 and ascend within the nodes.
 HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                   std::span<const ElementNodes> sets);
+                   std::span<const ElementNodes> sets, std::span<const int32_t> node_units = {});
 // The same plan as seen by `rank` alone, with its lists; the same errors.
 RankHalo rank_halo(int32_t rank, int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                   std::span<const ElementNodes> sets);
+                   std::span<const ElementNodes> sets, std::span<const int32_t> node_units = {});
 
 }  // namespace rift

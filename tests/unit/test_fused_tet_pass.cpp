@@ -11,6 +11,8 @@
 #include <string>
 
 #include "engine/core/state_hash.hpp"
+#include "engine/mesh/halo_plan.hpp"
+#include "engine/partition_report.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "systems/simulation.hpp"
 
@@ -124,5 +126,40 @@ TEST(FusedTetPass, SameBitsOnOneTwoAndFourThreadsWhileJointsBreak) {
     const std::string h = hex64(state_hash(sim->world().store));
     if (threads == 1) reference = h;
     EXPECT_EQ(h, reference) << threads << " threads";
+  }
+}
+
+// A split between processes keeps the node pass's sum units whole (engine/mesh/halo_plan.hpp): the solid's
+// partition work names them, from node 0 up, and none cuts a fused tet's four nodes apart.
+TEST(FusedTetPass, TheSumUnitsStartAtNodeZeroAndKeepEachFusedTetWhole) {
+  for (bool fused : {false, true}) {
+    auto sim = simulation(block(fused, 0.008, 1.0e6), 1);
+    const std::vector<PartitionWork> domains = collect_partition_work(sim->world());
+    ASSERT_EQ(domains.size(), 1u);
+    const std::vector<int32_t>& units = domains[0].node_units;
+    ASSERT_FALSE(units.empty());
+    EXPECT_EQ(units[0], 0);
+    EXPECT_TRUE(std::is_sorted(units.begin(), units.end()));
+    EXPECT_EQ(std::adjacent_find(units.begin(), units.end()), units.end());
+    EXPECT_LT(units.back(), domains[0].nodes);
+    size_t longest = 0;
+    for (size_t u = 0; u < units.size(); ++u)
+      longest =
+          std::max(longest, size_t((u + 1 < units.size() ? units[u + 1] : domains[0].nodes) - units[u]));
+    EXPECT_LE(longest, 64u) << "fused " << fused;
+    if (!fused) continue;
+    // A zone tet's corners are 4 nodes in a row; the pass integrates them together, so no unit starts
+    // after the first of them.
+    const std::span<const int32_t> tets = domains[0].elements[0].nodes;
+    size_t in_a_row = 0;
+    for (size_t e = 0; e < tets.size() / 4; ++e) {
+      const int32_t n = tets[4 * e];
+      if (tets[4 * e + 1] != n + 1 || tets[4 * e + 2] != n + 2 || tets[4 * e + 3] != n + 3) continue;
+      ++in_a_row;
+      for (int32_t k = 1; k < 4; ++k)
+        EXPECT_FALSE(std::binary_search(units.begin(), units.end(), n + k))
+            << "tet " << e << " node " << n + k;
+    }
+    EXPECT_GT(in_a_row, 100u);
   }
 }

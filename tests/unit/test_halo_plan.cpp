@@ -74,15 +74,30 @@ TEST(HaloPlan, OnePartComputesEverythingAndReadsNothing) {
   EXPECT_EQ(p.ghost_nodes + p.nodes_sent + p.receives_from + p.sends_to + p.shared[0] + p.shared[1], 0);
 }
 
-// A direct count: the owner of a node is the part of the first tet holding it; a part computes the
-// elements with an own node; its ghosts are the other nodes of those elements.
+// A direct count: the owner of a node is the part of the first tet holding it, or, in units, the part
+// most of its unit's nodes have by that rule; a part computes the elements with an own node; its ghosts are
+// the other nodes of those elements.
 void expect_direct_count(const std::vector<ElementNodes>& sets, int32_t nodes, int32_t parts,
-                         const std::vector<int32_t>& tet_part) {
+                         const std::vector<int32_t>& tet_part, const std::vector<int32_t>& units) {
   std::vector<int32_t> owner(size_t(nodes), -1);
   for (size_t t = 0; t < tet_part.size(); ++t)
     for (int c = 0; c < 4; ++c)
       if (owner[size_t(sets[0].nodes[4 * t + size_t(c)])] < 0)
         owner[size_t(sets[0].nodes[4 * t + size_t(c)])] = tet_part[t];
+  const std::vector<int32_t> by_tets = owner;
+  for (size_t u = 0; u < units.size(); ++u) {  // a unit goes to the part most of its nodes are in
+    const int32_t end = u + 1 < units.size() ? units[u + 1] : nodes;
+    std::map<int32_t, int> count;
+    for (int32_t n = units[u]; n < end; ++n) ++count[by_tets[size_t(n)]];
+    int32_t best = 0;
+    int most = 0;
+    for (const auto& [part, c] : count)  // ascending parts: the lowest wins a tie
+      if (c > most) {
+        best = part;
+        most = c;
+      }
+    for (int32_t n = units[u]; n < end; ++n) owner[size_t(n)] = best;
+  }
   auto ghosts = std::vector<std::set<int32_t>>(size_t(parts));
   std::vector<std::vector<int64_t>> computed(size_t(parts), std::vector<int64_t>(sets.size(), 0));
   std::map<std::pair<int32_t, int32_t>, int64_t> link_nodes;  // (reader, owner) -> nodes
@@ -101,7 +116,7 @@ void expect_direct_count(const std::vector<ElementNodes>& sets, int32_t nodes, i
     }
   for (int32_t r = 0; r < parts; ++r)
     for (int32_t v : ghosts[size_t(r)]) ++link_nodes[{r, owner[size_t(v)]}];
-  const HaloPlan plan = plan_halo(parts, tet_part, nodes, sets);
+  const HaloPlan plan = plan_halo(parts, tet_part, nodes, sets, units);
   for (int32_t r = 0; r < parts; ++r) {
     const PartHalo& p = plan.parts[size_t(r)];
     EXPECT_EQ(p.owned_nodes, std::count(owner.begin(), owner.end(), r)) << "part " << r;
@@ -120,8 +135,9 @@ void expect_direct_count(const std::vector<ElementNodes>& sets, int32_t nodes, i
   }
 }
 
-// check(sets, nodes, parts, tet_part) on random parts of a lattice's FEMDEM mesh with no joints (shared
-// nodes), with every tet jointed, and with a third of them.
+// check(sets, nodes, parts, tet_part, units) on random parts of a lattice's FEMDEM mesh with no joints
+// (shared nodes), with every tet jointed, and with a third of them; each node alone, then in units of
+// random lengths (1-9 nodes).
 template <class Check>
 void for_random_parts(uint32_t seed, std::initializer_list<int32_t> part_counts, Check&& check) {
   const TetMesh mesh = generate_lattice_box({4, 3, 5}, {1.0, 1.0, 1.0});
@@ -133,7 +149,12 @@ void for_random_parts(uint32_t seed, std::initializer_list<int32_t> part_counts,
       std::vector<int32_t> tet_part(mesh.tets.size());
       for (int32_t& p : tet_part) p = int32_t(rng() % uint32_t(parts));
       SCOPED_TRACE(testing::Message() << "zone every " << zone_every << ", " << parts << " parts");
-      check(solid_sets(dm), int32_t(dm.nodes.size()), parts, tet_part);
+      const int32_t nodes = int32_t(dm.nodes.size());
+      check(solid_sets(dm), nodes, parts, tet_part, std::vector<int32_t>{});
+      std::vector<int32_t> units;
+      for (int32_t n = 0; n < nodes; n += 1 + int32_t(rng() % 9)) units.push_back(n);
+      SCOPED_TRACE("in units");
+      check(solid_sets(dm), nodes, parts, tet_part, units);
     }
   }
 }
@@ -145,10 +166,10 @@ TEST(HaloPlan, RandomPartsOfContinuousAndJointedMeshesMatchADirectCount) {
 // Each rank's lists against the counts of the whole plan, and what a rank receives from a neighbour
 // against what that neighbour sends it.
 void expect_rank_lists_match(const std::vector<ElementNodes>& sets, int32_t nodes, int32_t parts,
-                             const std::vector<int32_t>& tet_part) {
-  const HaloPlan plan = plan_halo(parts, tet_part, nodes, sets);
+                             const std::vector<int32_t>& tet_part, const std::vector<int32_t>& units) {
+  const HaloPlan plan = plan_halo(parts, tet_part, nodes, sets, units);
   std::vector<RankHalo> ranks;
-  for (int32_t r = 0; r < parts; ++r) ranks.push_back(rank_halo(r, parts, tet_part, nodes, sets));
+  for (int32_t r = 0; r < parts; ++r) ranks.push_back(rank_halo(r, parts, tet_part, nodes, sets, units));
   int64_t owned = 0;
   for (int32_t r = 0; r < parts; ++r) {
     const RankHalo& h = ranks[size_t(r)];
@@ -218,6 +239,10 @@ TEST(HaloPlan, ANodeInNoTetOrAnIndexOutOfRangeIsRefused) {
   std::vector<int32_t> beyond = zeros;
   beyond[2] = 1;
   EXPECT_THROW(plan_halo(1, beyond, nodes, sets), Error);  // a part beyond the count
+  const std::vector<int32_t> late{1}, unsorted{0, 5, 3}, past{0, nodes};
+  EXPECT_THROW(plan_halo(1, zeros, nodes, sets, late), Error);      // units that leave node 0 out
+  EXPECT_THROW(plan_halo(1, zeros, nodes, sets, unsorted), Error);  // units out of order
+  EXPECT_THROW(plan_halo(1, zeros, nodes, sets, past), Error);      // a unit beyond the nodes
 }
 
 }  // namespace

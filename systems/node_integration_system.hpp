@@ -47,6 +47,9 @@ class NodeIntegrationSystem : public System {
   // process's share of a split run, whose nodes come in whole units (PartitionWork::node_units). The others
   // keep their state and book nothing. After fuse_tet_forces.
   void compute_only(std::span<const int32_t> owned);
+  // The last step's sums of each unit (each book's work, the damping), in unit order; in a share, zeros
+  // for the units of other processes. What a split run adds over its ranks, order-free.
+  std::span<const kernels::NodeStepResult> unit_sums() const { return unit_results_; }
 
  private:
   Store& store_;

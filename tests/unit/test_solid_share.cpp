@@ -2,8 +2,9 @@
 // shares, each a whole copy of the world that computes only its share (the tets and joints with a node of
 // its own, the sum units of its own nodes), with its ghosts' positions and velocities copied in from their
 // owners after every step, as the exchange between processes brings them. Every node must then move as in
-// one process, to the bit, and every joint a share computes must hold the same state, while joints break
-// across the shares' boundaries.
+// one process, to the bit, every joint a share computes must hold the same state, and every unit of the
+// node pass's energy sums must add the same bits on the share that owns it, while joints break across the
+// shares' boundaries.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -60,6 +61,31 @@ SolidModel& solid_of(Simulation& sim) {
   throw std::runtime_error("no solid model");
 }
 
+const NodeIntegrationSystem& node_pass_of(Simulation& sim) {
+  return dynamic_cast<const NodeIntegrationSystem&>(*solid_of(sim).node_integration());
+}
+
+// Each unit's sums of the step, from the share that owns the unit, against one process's: the books a
+// split run adds over its ranks are then one process's. Returns the units checked.
+size_t expect_unit_sums_match(Simulation& one, std::vector<std::unique_ptr<Simulation>>& shares,
+                              const std::vector<RankHalo>& halos, int step) {
+  const std::span<const kernels::NodeStepResult> all = node_pass_of(one).unit_sums();
+  const std::vector<int32_t> first = node_pass_of(one).sum_units();
+  size_t checked = 0;
+  for (size_t r = 0; r < shares.size(); ++r) {
+    const std::span<const kernels::NodeStepResult> mine = node_pass_of(*shares[r]).unit_sums();
+    for (size_t u = 0; u < first.size(); ++u) {
+      if (!std::binary_search(halos[r].owned.begin(), halos[r].owned.end(), first[u])) continue;
+      ++checked;
+      EXPECT_EQ(std::memcmp(all[u].work, mine[u].work, sizeof all[u].work), 0)
+          << "unit " << u << " step " << step;
+      EXPECT_EQ(std::memcmp(&all[u].damping, &mine[u].damping, sizeof(double)), 0) << "unit " << u;
+      EXPECT_EQ(all[u].non_finite, mine[u].non_finite);
+    }
+  }
+  return checked;
+}
+
 std::span<double> column(Simulation& sim, const char* table, const char* name) {
   return sim.world().store.table(table).span<double>(name);
 }
@@ -89,6 +115,8 @@ void run_split(bool fused, int32_t parts, int threads) {
   for (int step = 0; step < 500; ++step) {
     one->step_once();
     for (auto& s : shares) s->step_once();
+    if (step % 50 == 49)  // every unit has one owner, whose sums are one process's
+      ASSERT_EQ(expect_unit_sums_match(*one, shares, halos, step), node_pass_of(*one).sum_units().size());
     // The exchange: each share's ghosts from their owners.
     for (int32_t r = 0; r < parts; ++r)
       for (size_t k = 0; k < halos[size_t(r)].neighbours.size(); ++k) {

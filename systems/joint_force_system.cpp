@@ -11,23 +11,6 @@ namespace rift {
 namespace {
 constexpr size_t grain = 1024;
 
-// Consecutive ids as runs, cut at the multiples of grain; the first run of each grain-aligned stretch
-// starts a block.
-void set_runs(std::span<const int32_t> ids, std::vector<std::pair<size_t, size_t>>& runs,
-              std::vector<size_t>& block_first_run) {
-  runs.clear();
-  block_first_run.clear();
-  for (const int32_t id : ids) {
-    const auto e = static_cast<size_t>(id);
-    if (!runs.empty() && runs.back().second == e && e % grain != 0)
-      runs.back().second = e + 1;
-    else
-      runs.emplace_back(e, e + 1);
-  }
-  for (size_t r = 0; r < runs.size(); ++r)
-    if (r == 0 || runs[r].first / grain != runs[r - 1].first / grain) block_first_run.push_back(r);
-  block_first_run.push_back(runs.size());
-}
 }  // namespace
 
 JointForceSystem::JointForceSystem(Store& store, std::vector<kernels::JointMaterial> materials,
@@ -35,12 +18,11 @@ JointForceSystem::JointForceSystem(Store& store, std::vector<kernels::JointMater
     : store_(store),
       materials_(std::move(materials)),
       rule_(&kernels::joint_rule(integration_points)),
-      softening_(softening) {
+      softening_(softening),
+      computed_(grain) {
   const size_t joints = store_.table(solid::joint_table).size();
-  for (size_t begin = 0; begin < joints; begin += grain)
-    runs_.emplace_back(begin, std::min(joints, begin + grain));
-  for (size_t r = 0; r <= runs_.size(); ++r) block_first_run_.push_back(r);
-  blocks_.resize(runs_.size());
+  computed_.set_all(joints);
+  blocks_.resize(computed_.blocks());
   breaks_.resize(joints);
   Table& state = store_.add_table(solid::joint_state_table);
   solid::joint_state::damage_onsets.create(state);
@@ -86,12 +68,9 @@ void JointForceSystem::run(const StepContext& ctx) {
     args.residual_anchor = solid::joint::residual_anchor.in(joints);
   args.breaks = breaks_;
   args.break_count = &break_count_;
-  parallel_for(blocks_.size(), 1, [&](size_t b, size_t) {
-    kernels::JointStatus status;
-    for (size_t r = block_first_run_[b]; r < block_first_run_[b + 1]; ++r)
-      status += kernels::joint_forces(args, runs_[r].first, runs_[r].second);
-    blocks_[b] = status;
-  });
+  std::fill(blocks_.begin(), blocks_.end(), kernels::JointStatus{});
+  computed_.parallel_runs(
+      [&](size_t b, size_t begin, size_t end) { blocks_[b] += kernels::joint_forces(args, begin, end); });
   kernels::JointStatus total;
   for (const auto& b : blocks_) total += b;  // counts: any order
   degenerate_ = total.degenerate;
@@ -102,8 +81,8 @@ void JointForceSystem::run(const StepContext& ctx) {
 }
 
 void JointForceSystem::compute_only(std::span<const int32_t> joints) {
-  set_runs(joints, runs_, block_first_run_);
-  blocks_.assign(block_first_run_.size() - 1, {});
+  computed_.keep_only(joints);
+  blocks_.assign(computed_.blocks(), {});
 }
 
 // Threads append breaks in any order; sorting by joint makes the log independent of the schedule.

@@ -6,10 +6,10 @@
 // tets are the contact model's to handle.
 #include <atomic>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "engine/core/table.hpp"
+#include "engine/schedule/run_blocks.hpp"
 #include "engine/schedule/system.hpp"
 #include "kernels/joint_forces.hpp"
 
@@ -39,12 +39,9 @@ class JointForceSystem : public System {
   std::vector<kernels::JointMaterial> materials_;
   const kernels::JointRule* rule_;
   kernels::Softening softening_;
-  // The joints computed: runs of consecutive joints cut at the multiples of the grain; block b covers runs
-  // [block_first_run_[b], block_first_run_[b + 1]), one status per block.
-  std::vector<std::pair<size_t, size_t>> runs_;
-  std::vector<size_t> block_first_run_;
-  std::vector<kernels::JointStatus> blocks_;
-  std::vector<kernels::JointBreak> breaks_;  // one slot per joint: every joint can break at most once
+  RunBlocks computed_;                        // the joints computed (all, until compute_only)
+  std::vector<kernels::JointStatus> blocks_;  // one per block of computed_
+  std::vector<kernels::JointBreak> breaks_;   // one slot per joint: every joint can break at most once
   std::atomic<size_t> break_count_{0};
   size_t degenerate_ = 0, short_softening_ = 0;
 };

@@ -17,15 +17,6 @@ double largest_abs(std::span<const double> x, size_t begin, size_t end) {
   for (size_t e = begin; e < end; ++e) m = std::max(m, std::abs(x[e]));
   return m;
 }
-
-// [begin, end) cut at the multiples of grain.
-void add_runs(size_t begin, size_t end, std::vector<std::pair<size_t, size_t>>& runs) {
-  while (begin < end) {
-    const size_t stop = std::min(end, (begin / grain + 1) * grain);
-    runs.emplace_back(begin, stop);
-    begin = stop;
-  }
-}
 }  // namespace
 
 TetForceSystem::Tally& TetForceSystem::Tally::operator+=(const Tally& o) {
@@ -39,21 +30,14 @@ TetForceSystem::Tally& TetForceSystem::Tally::operator+=(const Tally& o) {
 
 TetForceSystem::TetForceSystem(Store& store, std::vector<kernels::TetMaterial> materials,
                                std::vector<double> initial_stress)
-    : store_(store), materials_(std::move(materials)), initial_stress_(std::move(initial_stress)) {
+    : store_(store),
+      materials_(std::move(materials)),
+      initial_stress_(std::move(initial_stress)),
+      own_(grain) {
   const size_t tets = store_.table(solid::tet_table).size();
-  add_runs(0, tets, own_runs_);
-  set_blocks();
+  own_.set_all(tets);
+  tallies_.assign(own_.blocks(), Tally{});
   damping_parts_.resize((tets + damping_grain - 1) / damping_grain);
-}
-
-// Runs of the same grain-aligned stretch of tets form a block: without hand_over, exactly the blocks of
-// parallel_for(tets, grain).
-void TetForceSystem::set_blocks() {
-  block_first_run_.clear();
-  for (size_t r = 0; r < own_runs_.size(); ++r)
-    if (r == 0 || own_runs_[r].first / grain != own_runs_[r - 1].first / grain) block_first_run_.push_back(r);
-  block_first_run_.push_back(own_runs_.size());
-  tallies_.assign(block_first_run_.size() - 1, Tally{});
 }
 
 Access TetForceSystem::access() const {
@@ -85,16 +69,12 @@ kernels::TetForceArgs TetForceSystem::step_args(const StepContext& ctx) const {
 
 void TetForceSystem::run(const StepContext& ctx) {
   const kernels::TetForceArgs a = step_args(ctx);
-  parallel_for(tallies_.size(), 1, [&](size_t b, size_t) {
-    Tally& t = tallies_[b];
-    t = Tally{};
-    for (size_t r = block_first_run_[b]; r < block_first_run_[b + 1]; ++r) {
-      const auto [begin, end] = own_runs_[r];
-      Tally run;
-      run.status = kernels::tet_forces(a, begin, end);
-      run.largest_viscous_power = largest_abs(a.viscous_power, begin, end);
-      t += run;
-    }
+  std::fill(tallies_.begin(), tallies_.end(), Tally{});
+  own_.parallel_runs([&](size_t b, size_t begin, size_t end) {
+    Tally run;
+    run.status = kernels::tet_forces(a, begin, end);
+    run.largest_viscous_power = largest_abs(a.viscous_power, begin, end);
+    tallies_[b] += run;
   });
   inverted_ = 0;
   first_inverted_ = -1;
@@ -132,32 +112,21 @@ void TetForceSystem::book_damping(const StepContext& ctx) {
 }
 
 void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ranges) {
-  own_runs_.clear();
+  std::vector<RunBlocks::Run> kept;  // the ranges between the handed-over ones
   size_t next = 0;
   for (const auto& [begin, end] : ranges) {
-    add_runs(next, begin, own_runs_);
+    kept.emplace_back(next, begin);
     next = end;
   }
-  add_runs(next, store_.table(solid::tet_table).size(), own_runs_);
-  set_blocks();
+  kept.emplace_back(next, store_.table(solid::tet_table).size());
+  own_.set(kept);
+  tallies_.assign(own_.blocks(), Tally{});
   handed_over_ = !ranges.empty();
 }
 
 void TetForceSystem::compute_only(std::span<const int32_t> tets) {
-  std::vector<std::pair<size_t, size_t>> kept;
-  auto next = tets.begin();
-  for (const auto& [begin, end] : own_runs_) {  // both ascending; the runs stay cut at the multiples of grain
-    next = std::lower_bound(next, tets.end(), static_cast<int32_t>(begin));
-    for (; next != tets.end() && static_cast<size_t>(*next) < end; ++next) {
-      const auto e = static_cast<size_t>(*next);
-      if (!kept.empty() && kept.back().second == e)
-        kept.back().second = e + 1;
-      else
-        kept.emplace_back(e, e + 1);
-    }
-  }
-  own_runs_ = std::move(kept);
-  set_blocks();
+  own_.keep_only(tets);
+  tallies_.assign(own_.blocks(), Tally{});
 }
 
 void TetForceSystem::fused_forces(kernels::TetForceArgs a, size_t begin, size_t end,

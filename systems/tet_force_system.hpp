@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/core/table.hpp"
+#include "engine/schedule/run_blocks.hpp"
 #include "engine/schedule/system.hpp"
 #include "kernels/reproducible_sum.hpp"
 #include "kernels/tet_forces.hpp"
@@ -64,14 +65,12 @@ class TetForceSystem : public System {
   Store& store_;
   std::vector<kernels::TetMaterial> materials_;
   std::vector<double> initial_stress_;
-  // The tets run() computes (all, until hand_over): runs of consecutive tets cut at the multiples of
-  // `grain`; block b covers runs [block_first_run_[b], block_first_run_[b + 1]), about `grain` tets, so a
-  // zone that leaves many short runs does not make as many tasks. One tally per block.
-  std::vector<std::pair<size_t, size_t>> own_runs_;
-  std::vector<size_t> block_first_run_;
+  // The tets run() computes (all, until hand_over), in runs cut at the multiples of `grain`, blocks of a
+  // grain-aligned stretch each, so a zone that leaves many short runs does not make as many tasks. One
+  // tally per block.
+  RunBlocks own_;
   std::vector<Tally> tallies_;
   std::vector<kernels::ReproducibleSum> damping_parts_;  // one per block of the damping's sum
-  void set_blocks();
   bool handed_over_ = false;
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;

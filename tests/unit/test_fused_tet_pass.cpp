@@ -15,41 +15,16 @@
 #include "engine/partition_report.hpp"
 #include "engine/scene/load_scene.hpp"
 #include "systems/simulation.hpp"
+#include "tests/unit/test_pulled_block_support.hpp"
 
 using namespace rift;
 
 namespace {
 
-// A 20 x 10 x 10 mm limestone block, clamped at x = 0, pulled at x = 20 mm; the fracture zone is the
-// block's part beyond x = zone_from.
-std::string block(bool fused, double zone_from, double traction) {
-  return "scene: {name: fused-tet-pass}\n"
-         "time: {end: 1.0, safety: 0.5}\n"
-         "mesh:\n  generate: {box: [0.02, 0.01, 0.01], size_min: 0.002, size_max: 0.002}\n"
-         "solid:\n"
-         "  fused_tet_pass: " +
-         std::string(fused ? "true" : "false") +
-         "\n"
-         "  materials: [{name: rock, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05,\n"
-         "               fracture: {tensile_strength: 5.0e6, cohesion: 1.5e7, friction_angle: 35, G_I: 30,\n"
-         "                          G_II: 300}}]\n"
-         "  boundaries:\n"
-         "    - {surface: xmin, type: fixed}\n"
-         "    - {surface: xmax, type: traction, direction: [1, 0, 0], value: " +
-         std::to_string(traction) +
-         "}\n"
-         "  fracture: {box_min: [" +
-         std::to_string(zone_from) + ", -1, -1], box_max: [1, 1, 1]}\n";
-}
+using test::pulled_block;
 
 std::unique_ptr<Simulation> simulation(const std::string& yaml, int threads) {
-  auto result = read_scene_text(yaml, "test_fused_tet_pass", ".");
-  if (!result.scene) throw std::runtime_error(result.errors.front().format());
-  RunOptions o;
-  o.write_output = false;
-  o.progress = false;
-  o.threads = threads;
-  return std::make_unique<Simulation>(std::move(*result.scene), o);
+  return test::quiet_simulation(yaml, threads);
 }
 
 double largest_abs(std::span<const double> a) {
@@ -61,8 +36,8 @@ double largest_abs(std::span<const double> a) {
 }  // namespace
 
 TEST(FusedTetPass, AgreesWithTheSeparatePassesToRounding) {
-  auto fused = simulation(block(true, 0.008, 1.0e6), 2);
-  auto separate = simulation(block(false, 0.008, 1.0e6), 2);
+  auto fused = simulation(pulled_block(true, 0.008, 1.0e6), 2);
+  auto separate = simulation(pulled_block(false, 0.008, 1.0e6), 2);
   const Table& tets = fused->world().store.table("solid_tet");
   ASSERT_GT(fused->world().store.table("solid_joint").size(), 100u);
   // Both kinds of tet are present: the zone covers part of the block.
@@ -120,7 +95,7 @@ TEST(FusedTetPass, SameBitsOnOneTwoAndFourThreadsWhileJointsBreak) {
   // 4e7 Pa pulls the loaded end apart: joints break within the steps run.
   std::string reference;
   for (int threads : {1, 2, 4}) {
-    auto sim = simulation(block(true, -1.0, 4.0e7), threads);
+    auto sim = simulation(pulled_block(true, -1.0, 4.0e7), threads);
     for (int step = 0; step < 600; ++step) sim->step_once();
     EXPECT_GT(sim->world().store.table("solid_fracture_event").size(), 0u) << "no joint broke";
     const std::string h = hex64(state_hash(sim->world().store));
@@ -133,7 +108,7 @@ TEST(FusedTetPass, SameBitsOnOneTwoAndFourThreadsWhileJointsBreak) {
 // partition work names them, from node 0 up, and none cuts a fused tet's four nodes apart.
 TEST(FusedTetPass, TheSumUnitsStartAtNodeZeroAndKeepEachFusedTetWhole) {
   for (bool fused : {false, true}) {
-    auto sim = simulation(block(fused, 0.008, 1.0e6), 1);
+    auto sim = simulation(pulled_block(fused, 0.008, 1.0e6), 1);
     const std::vector<PartitionWork> domains = collect_partition_work(sim->world());
     ASSERT_EQ(domains.size(), 1u);
     const std::vector<int32_t>& units = domains[0].node_units;

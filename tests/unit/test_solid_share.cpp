@@ -20,39 +20,20 @@
 #include "engine/scene/load_scene.hpp"
 #include "systems/simulation.hpp"
 #include "systems/solid_model.hpp"
+#include "tests/unit/test_pulled_block_support.hpp"
 
 using namespace rift;
 
 namespace {
 
-// A 20 x 10 x 10 mm limestone block, clamped at x = 0 and pulled apart at x = 20 mm (4e7 Pa breaks joints
-// within the steps run); the fracture zone beyond x = 6 mm, so tets with nodes of their own (computed in
-// the node pass) and tets sharing nodes both lie on the shares' boundaries.
+// The pulled block (4e7 Pa breaks joints within the steps run), its fracture zone beyond x = 6 mm, so tets
+// with nodes of their own and tets sharing nodes both lie on the shares' boundaries.
 std::string pulled_block(bool fused) {
-  return "scene: {name: solid-share}\n"
-         "time: {end: 1.0, safety: 0.5}\n"
-         "mesh:\n  generate: {box: [0.02, 0.01, 0.01], size_min: 0.002, size_max: 0.002}\n"
-         "solid:\n"
-         "  fused_tet_pass: " +
-         std::string(fused ? "true" : "false") +
-         "\n"
-         "  materials: [{name: rock, density: 2650, young: 4.0e10, poisson: 0.25, damping: 0.05,\n"
-         "               fracture: {tensile_strength: 5.0e6, cohesion: 1.5e7, friction_angle: 35, G_I: 30,\n"
-         "                          G_II: 300}}]\n"
-         "  boundaries:\n"
-         "    - {surface: xmin, type: fixed}\n"
-         "    - {surface: xmax, type: traction, direction: [1, 0, 0], value: 4.0e7}\n"
-         "  fracture: {box_min: [0.006, -1, -1], box_max: [1, 1, 1]}\n";
+  return test::pulled_block(fused, 0.006, 4.0e7);
 }
 
 std::unique_ptr<Simulation> simulation(const std::string& yaml, int threads) {
-  auto result = read_scene_text(yaml, "test_solid_share", ".");
-  if (!result.scene) throw std::runtime_error(result.errors.front().format());
-  RunOptions o;
-  o.write_output = false;
-  o.progress = false;
-  o.threads = threads;
-  return std::make_unique<Simulation>(std::move(*result.scene), o);
+  return test::quiet_simulation(yaml, threads);
 }
 
 SolidModel& solid_of(Simulation& sim) {

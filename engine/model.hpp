@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,9 @@
 #include "engine/schedule/system.hpp"
 
 namespace rift {
+
+struct SplitJob;  // engine/distributed/split_run.hpp
+struct SplitDomain;
 
 class Model {
  public:
@@ -42,6 +46,16 @@ class Model {
   // computes on, with its tets' work and the elements on its nodes. Models without a mesh of their own add
   // none.
   virtual void partition_work(std::vector<PartitionWork>& domains) const {}
+  // A run split between the processes of a job (docs/distributed.md): from the next step on, this model
+  // computes only this rank's share of its domains (one per partition_work entry, in its order). A model
+  // that does not run split refuses with Error (the default). Before the step graph is built.
+  virtual void take_share(const SplitJob& job, std::span<const SplitDomain> domains);
+  // In a split run, after each step's graph and stages, on the thread that calls MPI, before the health
+  // check: what the ranks exchange and add up (ghosts, energy books, counts). Collective.
+  virtual void finish_share_step(const StepContext& ctx) {}
+  // In a split run, before rank 0 reads the store (outputs, metrics, checkpoints, the state hash): brings
+  // the rows of this model that other ranks computed to rank 0. Collective.
+  virtual void gather_to_root() {}
 
   // Wall times of work done outside the graph's systems (beside and after stages), for the timing table
   // and summary.json.

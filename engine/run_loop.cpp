@@ -14,6 +14,8 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/core/state_hash.hpp"
+#include "engine/distributed/job_agreement.hpp"
+#include "engine/distributed/mpi_runtime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/output_dir.hpp"
@@ -32,6 +34,20 @@ double seconds_since(clock_type::time_point t0) {
 }
 }  // namespace
 
+// In a split run, a step that fails on some ranks fails on all of them, with the lowest rank's message,
+// before the next step that needs them all.
+template <class F>
+void RunLoop::on_every_rank(F&& step) {
+  std::optional<std::string> problem;
+  try {
+    step();
+  } catch (const Error& e) {
+    if (!split()) throw;
+    problem = e.what();
+  }
+  if (const auto agreed = agree_on_stop(problem)) throw JobError(*agreed);
+}
+
 std::atomic<bool>& RunLoop::interrupt_flag() {
   static std::atomic<bool> flag{false};
   return flag;
@@ -39,13 +55,21 @@ std::atomic<bool>& RunLoop::interrupt_flag() {
 
 RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
     : scene_(std::move(scene)), options_(std::move(options)) {
+  if (launched_rank().size > 1) {
+    const MpiRank job = mpi_runtime_init();
+    job_rank_ = job.rank;
+    job_size_ = job.size;
+  }
+  writes_ = options_.write_output && job_rank_ == 0;
+  const auto together = [this](auto&& step) { on_every_rank(step); };
   // Everything that can reject the input happens before the output folder is touched.
-  if (options_.write_output) buffer_log_messages();
+  if (writes_) buffer_log_messages();
   spdlog::info("scene '{}' ({}), hash {}", scene_.name,
                scene_.source_file.empty() ? "built-in" : scene_.source_file, scene_.hash);
-  world_ = build(scene_);
+  together([&] { world_ = build(scene_); });
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
+  if (split()) together([&] { split_between_ranks(); });
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads, world_->plan.graph_periods());
   spdlog::info("the step, as the composition root scripts it:\n{}", world_->plan.script());
   check_background_access();
@@ -59,14 +83,16 @@ RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
           "scene with the sequential coupling");
     graph_->check_access_against(&world_->store);
   }
-  choose_dt();
-  if (options_.write_output && !options_.restart_latest) refuse_or_clear_earlier_run();
+  together([&] { choose_dt(); });
+  together([&] {
+    if (writes_ && !options_.restart_latest) refuse_or_clear_earlier_run();
+  });
   if (options_.write_output)
     checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
   // A restart reads what it continues (checkpoint, time series) before anything in the folder changes, so
-  // a refused restart leaves the interrupted run's files as they were.
-  if (options_.restart_latest) restart_from_latest();
-  if (options_.write_output) {
+  // a refused restart leaves the interrupted run's files as they were. Every rank of a job reads it.
+  if (options_.restart_latest) together([&] { restart_from_latest(); });
+  if (writes_) {
     create_output_dir(options_.out_dir);
     open_log_file(options_.out_dir / "rift.log");
     write_text_atomic(options_.out_dir / "scene.yaml", scene_.resolved_yaml);
@@ -120,7 +146,7 @@ void RunLoop::remove_killed_writers_files() {
 
 RunLoop::~RunLoop() {
   join_background_quietly();  // before the graph's arena and the world go
-  if (options_.write_output) close_log_file();
+  if (writes_) close_log_file();
 }
 
 // Work a stage runs beside the graph (engine/schedule/step_plan.hpp) overlaps every system of the graph, so
@@ -343,18 +369,25 @@ void RunLoop::step_once() {
   const StepContext after{step_, time(), dt_, step_ == total_steps_};
   // Every guard that fires at this step is reported: one model's failure is often another's symptom (a
   // fluid step that does not converge while the coupling's force oscillates and grows).
+  if (split())
+    for (const auto& m : world_->models) m->finish_share_step(ctx);
   std::string stop;
   for (const auto& m : world_->models)
     if (auto diagnosis = m->check_health(after))
       stop += (stop.empty() ? "run stopped by the " : "\nAt the same step, the ") + m->name() +
               " guard: " + *diagnosis;
-  if (!stop.empty()) throw Error(stop);
+  if (!split()) {
+    if (!stop.empty()) throw Error(stop);
+    return;
+  }
+  if (const auto agreed = agree_on_stop(stop.empty() ? std::nullopt : std::optional<std::string>(stop)))
+    throw JobError(*agreed);
 }
 
 RunResult RunLoop::run() {
   const auto t0 = clock_type::now();
   RunResult result;
-  Progress progress(total_steps_, scene_.time.end, options_.progress);
+  Progress progress(total_steps_, scene_.time.end, options_.progress && job_rank_ == 0);
   const double interval = scene_.output.interval;
   const int64_t metric_every = std::max<int64_t>(1, total_steps_ / 1000);
   auto last_checkpoint = clock_type::now();
@@ -384,9 +417,12 @@ RunResult RunLoop::run() {
         if (output_due || last) write_output();
         const CheckpointSpec& c = scene_.checkpoint;
         const bool stop_here = options_.stop_after_step && step_ >= *options_.stop_after_step && !last;
-        const bool interrupted = interrupt_flag().load();
-        if ((c.every_steps > 0 && step_ % c.every_steps == 0) ||
-            (c.every_seconds > 0 && seconds_since(last_checkpoint) >= c.every_seconds) || stop_here ||
+        // The clock and a signal are rank 0's in a split run: every rank checkpoints and stops with it.
+        const unsigned rank_zero = agree_with_rank_zero(
+            (interrupt_flag().load() ? 1u : 0u) |
+            (c.every_seconds > 0 && seconds_since(last_checkpoint) >= c.every_seconds ? 2u : 0u));
+        const bool interrupted = rank_zero & 1u;
+        if ((c.every_steps > 0 && step_ % c.every_steps == 0) || (rank_zero & 2u) || stop_here ||
             interrupted) {
           write_checkpoint();
           last_checkpoint = clock_type::now();
@@ -404,6 +440,8 @@ RunResult RunLoop::run() {
       progress.update(step_, time(), progress_quantities_);
     }
   } catch (const Error& e) {
+    // One rank's error in a split run: the others are waiting for it, and the job ends (the CLI).
+    if (split() && !dynamic_cast<const JobError*>(&e)) throw;
     observe_every_step_ = true;
     join_background_quietly();
     progress.finish();
@@ -412,6 +450,7 @@ RunResult RunLoop::run() {
     result.wall_seconds = seconds_since(t0);
     result.stop_reason = e.what();
     if (options_.write_output) {
+      gather_to_root();
       write_time_series();
       write_summary(result);
     }
@@ -423,7 +462,7 @@ RunResult RunLoop::run() {
   result.steps = step_;
   result.time = time();
   result.completed = step_ == total_steps_;
-  result.state_hash = state_hash(world_->store);
+  result.state_hash = run_state_hash();
   result.wall_seconds = seconds_since(t0);
   if (options_.write_output) write_summary(result);
   log_timing_table();
@@ -467,11 +506,15 @@ void check_finite(std::span<const XdmfGrid> grids, int64_t step, double time) {
 
 void RunLoop::write_output() {
   const auto t0 = clock_type::now();
-  std::vector<XdmfGrid> grids;
-  for (const auto& m : world_->models) m->output_grids(grids, scene_.output.fields);
-  check_finite(grids, step_, time());
-  if (!grids.empty()) series_->write(time(), step_, grids);
-  write_time_series();
+  gather_to_root();
+  on_every_rank([&] {
+    if (!writes_) return;
+    std::vector<XdmfGrid> grids;
+    for (const auto& m : world_->models) m->output_grids(grids, scene_.output.fields);
+    check_finite(grids, step_, time());
+    if (!grids.empty()) series_->write(time(), step_, grids);
+    write_time_series();
+  });
   ++outputs_written_;
   output_seconds_ += seconds_since(t0);
 }
@@ -502,16 +545,21 @@ std::string key_quantities(const std::vector<std::string>& names, const std::vec
 
 }  // namespace
 
+// In a split run every rank computes the row (the energies are added over the ranks); rank 0's, from the
+// gathered store, is the run's.
 void RunLoop::record_metrics() {
+  gather_to_root();
   std::vector<std::pair<std::string, double>> row;
   for (const auto& m : world_->models) m->metrics(time(), row);
   if (metric_names_.empty())
     for (const auto& [name, value] : row) metric_names_.push_back(name);
   std::vector<double> values{static_cast<double>(step_), time()};
-  for (const auto& [name, value] : row) {
-    if (!std::isfinite(value)) refuse_non_finite("the time series' " + name, step_, time());
-    values.push_back(value);
-  }
+  on_every_rank([&] {
+    for (const auto& [name, value] : row)
+      if (job_rank_ == 0 && !std::isfinite(value))
+        refuse_non_finite("the time series' " + name, step_, time());
+  });
+  for (const auto& [name, value] : row) values.push_back(value);
   progress_quantities_ = key_quantities(metric_names_, values);
   metric_rows_.push_back(std::move(values));
 }
@@ -519,6 +567,7 @@ void RunLoop::record_metrics() {
 // The time series is rewritten (atomically) with each field output and checkpoint, not on every
 // metrics row: an fsync per step would dominate small runs.
 void RunLoop::write_time_series() const {
+  if (!writes_) return;
   write_text_atomic(options_.out_dir / "timeseries.csv", format_time_series(metric_names_, metric_rows_));
   for (const auto& m : world_->models) m->write_logs(options_.out_dir);
 }
@@ -527,6 +576,8 @@ void RunLoop::write_checkpoint() {
   // Everything a model runs beside the step ends first: a checkpoint is the store at rest.
   join_background();
   const auto t0 = clock_type::now();
+  gather_to_root();
+  if (!writes_) return;
   CheckpointMeta meta;
   meta.step = step_;
   meta.time = time();
@@ -541,6 +592,8 @@ void RunLoop::write_checkpoint() {
   spdlog::debug("checkpoint {}", file.string());
 }
 
+// Every rank of a split run builds the summary (a model's figures may be sums over the ranks); rank 0
+// writes it.
 void RunLoop::write_summary(const RunResult& result) const {
   RunSummary summary;
   auto& j = summary.root();
@@ -549,6 +602,8 @@ void RunLoop::write_summary(const RunResult& result) const {
   j["status"] =
       result.completed ? "completed" : (result.stop_reason.empty() ? "stopped" : result.stop_reason);
   j["threads"] = options_.threads;
+  j["ranks"] = job_size_;
+  if (split()) j["partition"] = partition_summary_;
   j["steps"] = result.steps;
   j["total_steps"] = total_steps_;
   j["simulated_time"] = result.time;
@@ -564,7 +619,7 @@ void RunLoop::write_summary(const RunResult& result) const {
   j["wall_seconds_per_system"]["output"] = output_seconds_;
   j["wall_seconds_per_system"]["checkpoint"] = checkpoint_seconds_;
   for (const auto& m : world_->models) m->summarize(j["metrics"]);
-  summary.write(options_.out_dir / "summary.json");
+  if (writes_) summary.write(options_.out_dir / "summary.json");
 }
 
 void RunLoop::log_timing_table() const {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -90,6 +91,16 @@ class RunLoop {
       fn();
   }
   void remove_killed_writers_files();
+  // A run under mpirun with more than one rank (engine/run_split.cpp): each model takes its rank's share;
+  // rank 0 alone writes, after the models gather their rows to it.
+  bool split() const { return job_size_ > 1; }
+  void split_between_ranks();
+  void gather_to_root();
+  std::optional<std::string> agree_on_stop(const std::optional<std::string>& mine) const;
+  unsigned agree_with_rank_zero(unsigned flags) const;
+  uint64_t run_state_hash();  // rank 0's, from the gathered store, on every rank
+  template <class F>
+  void on_every_rank(F&& step);
   void join_background();
   void join_background_quietly() noexcept;
 
@@ -110,6 +121,9 @@ class RunLoop {
   std::string progress_quantities_;  // the progress line's physics (key_quantities in simulation.cpp)
   double output_seconds_ = 0.0, checkpoint_seconds_ = 0.0;
   bool has_background_ = false;  // a stage of the step plan runs beside the graph
+  int job_rank_ = 0, job_size_ = 1;
+  bool writes_ = true;  // this process writes the run's files: options_.write_output, on rank 0 of a job
+  nlohmann::json partition_summary_;
 };
 
 }  // namespace rift

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/distributed/share_reduction.hpp"
 #include "engine/schedule/parallel.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -75,7 +76,7 @@ void JointForceSystem::run(const StepContext& ctx) {
   for (const auto& b : blocks_) total += b;  // counts: any order
   degenerate_ = total.degenerate;
   short_softening_ = total.short_softening;
-  if (total.damage_onsets > 0)
+  if (total.damage_onsets > 0 && !share_)
     solid::joint_state::damage_onsets.in(store_)[0] += static_cast<int64_t>(total.damage_onsets);
   if (total.broke > 0) record_events(ctx, std::min(break_count_.load(), breaks_.size()));
 }
@@ -83,6 +84,35 @@ void JointForceSystem::run(const StepContext& ctx) {
 void JointForceSystem::compute_only(std::span<const int32_t> joints) {
   computed_.keep_only(joints);
   blocks_.assign(computed_.blocks(), {});
+}
+
+namespace {
+int64_t damaged_points(std::span<const double> history, size_t points, std::span<const int32_t> joints) {
+  int64_t n = 0;
+  for (int32_t j : joints)
+    for (size_t q = 0; q < points; ++q) n += history[size_t(j) * points + q] > 0.0;
+  return n;
+}
+}  // namespace
+
+void JointForceSystem::count_only(std::vector<int32_t> counted) {
+  const std::span<const double> history = solid::joint::d_max.read(store_);
+  const size_t joints = store_.table(solid::joint_table).size();
+  const size_t points = joints > 0 ? history.size() / joints : 0;
+  std::vector<int32_t> all(joints);
+  for (size_t j = 0; j < joints; ++j) all[j] = int32_t(j);
+  damaged_points_at_share_ = damaged_points(history, points, all);  // the store is whole at set-up
+  onsets_at_share_ = solid::joint_state::damage_onsets.read(store_)[0];
+  counted_ = std::move(counted);
+  share_ = true;
+}
+
+void JointForceSystem::book_share(const ShareReduction& ranks) {
+  const std::span<const double> history = solid::joint::d_max.read(store_);
+  const size_t joints = store_.table(solid::joint_table).size();
+  int64_t damaged[1] = {damaged_points(history, joints > 0 ? history.size() / joints : 0, counted_)};
+  ranks.sum(damaged);
+  solid::joint_state::damage_onsets.in(store_)[0] = onsets_at_share_ + damaged[0] - damaged_points_at_share_;
 }
 
 // Threads append breaks in any order; sorting by joint makes the log independent of the schedule.

@@ -15,6 +15,8 @@
 
 namespace rift {
 
+class ShareReduction;
+
 class JointForceSystem : public System {
  public:
   JointForceSystem(Store& store, std::vector<kernels::JointMaterial> materials, int integration_points,
@@ -31,6 +33,13 @@ class JointForceSystem : public System {
   // From the next step on, computes only the joints of `joints` (ascending): a process's share of a split
   // run (engine/mesh/halo_plan.hpp).
   void compute_only(std::span<const int32_t> joints);
+  // A split run's share (after compute_only): from the next step on, the count of damage onsets (integration
+  // points whose damage history left 0) is not added in the step but set by book_share() after the graph:
+  // the count at the start of the share plus the points of the joints of `counted` (ascending: this rank's,
+  // each joint counted by one rank) whose history is above 0 now, added over the ranks, less those at the
+  // start. A history never returns to 0, so this is one process's count. Before the step graph is built.
+  void count_only(std::vector<int32_t> counted);
+  void book_share(const ShareReduction& ranks);
 
  private:
   void record_events(const StepContext& ctx, size_t count);
@@ -44,6 +53,9 @@ class JointForceSystem : public System {
   std::vector<kernels::JointBreak> breaks_;   // one slot per joint: every joint can break at most once
   std::atomic<size_t> break_count_{0};
   size_t degenerate_ = 0, short_softening_ = 0;
+  bool share_ = false;
+  std::vector<int32_t> counted_;
+  int64_t onsets_at_share_ = 0, damaged_points_at_share_ = 0;
 };
 
 }  // namespace rift

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "engine/distributed/share_reduction.hpp"
 #include "engine/schedule/parallel.hpp"
 #include "kernels/node_integration.hpp"
 #include "kernels/reproducible_sum.hpp"
@@ -111,7 +112,7 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
           unit_results_[first / kSumUnitNodes] =
               kernels::integrate_nodes(args, slots, first, std::min(end, first + kSumUnitNodes));
     });
-  book_totals();
+  if (!share_) book_totals();
 }
 
 // The units' work and damping, each added order-free; the count of non-finite nodes is exact anyway.
@@ -131,6 +132,40 @@ void NodeIntegrationSystem::book_totals() {
   if (damped_)
     solid::energy::damping.in(energy)[0] +=
         kernels::reproducible_total(units, [&](size_t u) { return unit_results_[u].damping; });
+}
+
+void NodeIntegrationSystem::book_share(const ShareReduction& ranks) {
+  Table& energy = store_.table(solid::energy_table);
+  const size_t units = unit_results_.size();
+  // The sums' slots: each book the route uses, then the damping (a slot stays 0 when unused).
+  constexpr size_t kDamping = kNodeForceBooks;
+  double largest[kNodeForceBooks + 1] = {};
+  for (const auto& u : unit_results_) {  // skipped units hold zeros
+    for (size_t b = 0; b < kNodeForceBooks; ++b) largest[b] = std::max(largest[b], std::abs(u.work[b]));
+    largest[kDamping] = std::max(largest[kDamping], std::abs(u.damping));
+  }
+  ranks.max(largest);
+  kernels::ReproducibleSum sums[kNodeForceBooks + 1];
+  for (size_t b = 0; b <= kNodeForceBooks; ++b) {
+    const kernels::ReproducibleGrid grid =
+        kernels::reproducible_grid(largest[b], static_cast<int64_t>(units));
+    for (size_t u = 0; u < units; ++u)
+      if (!skipped(u)) sums[b].add(b == kDamping ? unit_results_[u].damping : unit_results_[u].work[b], grid);
+  }
+  ranks.sum(sums);
+  bool booked[kNodeForceBooks] = {};
+  for (const NodeForceRouteEntry& e : kNodeForceRoute) {
+    const size_t b = static_cast<size_t>(e.book);
+    if (!uses(e) || booked[b]) continue;
+    booked[b] = true;
+    energy.span<double>(kBookWork[b])[0] += sums[b].value();
+  }
+  if (damped_) solid::energy::damping.in(energy)[0] += sums[kDamping].value();
+  int64_t non_finite[1] = {0};
+  for (size_t u = 0; u < units; ++u)
+    if (!skipped(u)) non_finite[0] += static_cast<int64_t>(unit_results_[u].non_finite);
+  ranks.sum(non_finite);
+  non_finite_ = static_cast<size_t>(non_finite[0]);
 }
 
 void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
@@ -155,11 +190,21 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
         continue;
       }
       const size_t units = (piece.tet_end - piece.tet_begin + kUnitTets - 1) / kUnitTets;
-      bool any = false;
-      for (size_t u = piece.first_unit; u < piece.first_unit + units; ++u) any |= !skipped(u);
-      if (!any) continue;
+      size_t computed = 0;
+      for (size_t u = piece.first_unit; u < piece.first_unit + units; ++u) computed += !skipped(u);
+      if (computed == 0) continue;
       // The run's corner forces go to scratch, and its nodes gather per tet (kernels/node_integration.hpp).
-      TetForceSystem::fused_forces(tet_args, piece.tet_begin, piece.tet_end, scratch, tally);
+      // In a share, only the units it integrates: another rank's unit reads nodes this one does not
+      // receive, and its inverted tets and largest power would enter this rank's tally.
+      if (computed == units) {
+        TetForceSystem::fused_forces(tet_args, piece.tet_begin, piece.tet_end, scratch, tally);
+      } else {
+        size_t unit = piece.first_unit;
+        for (size_t first = piece.tet_begin; first < piece.tet_end; first += kUnitTets, ++unit)
+          if (!skipped(unit))
+            TetForceSystem::fused_forces(tet_args, first, std::min(piece.tet_end, first + kUnitTets),
+                                         scratch.subspan(12 * (first - piece.tet_begin)), tally);
+      }
       const kernels::PrivateTetForces tets{scratch,     piece.tet_begin, piece.node_begin, slots.source[1],
                                            face_joint_, face_corners_,   loaded_};
       size_t unit = piece.first_unit;
@@ -173,7 +218,7 @@ void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,
   TetForceSystem::Tally total;
   for (const auto& t : fused_tallies_) total += t;  // order-free: counts, a lowest index and a largest term
   fused_->book(total);
-  fused_->book_damping(ctx);
+  if (fused_->books_damping_in_step()) fused_->book_damping(ctx);
 }
 
 std::vector<int32_t> NodeIntegrationSystem::sum_units() const {
@@ -197,6 +242,7 @@ void NodeIntegrationSystem::compute_only(std::span<const int32_t> owned) {
   for (size_t u = 0; u < first.size(); ++u)
     if (std::binary_search(owned.begin(), owned.end(), first[u])) unit_skipped_[u] = 0;
   std::fill(unit_results_.begin(), unit_results_.end(), kernels::NodeStepResult{});
+  share_ = true;
 }
 
 size_t NodeIntegrationSystem::fuse_tet_forces(TetForceSystem& tet_system) {

@@ -15,6 +15,8 @@
 
 namespace rift {
 
+class ShareReduction;
+
 class NodeIntegrationSystem : public System {
  public:
   // velocity_conditions[i] drives nodes whose `held` column is i (fixed supports are velocity 0).
@@ -47,6 +49,11 @@ class NodeIntegrationSystem : public System {
   // process's share of a split run, whose nodes come in whole units (PartitionWork::node_units). The others
   // keep their state and book nothing. After fuse_tet_forces.
   void compute_only(std::span<const int32_t> owned);
+  // A split run's share (after compute_only): from the next step on, run() leaves the units' work and
+  // damping (and the fused tets' damping) unbooked; book_share() books them after the graph, each sum on
+  // the grid of every rank's largest unit term, added exactly over the ranks, so the books have one
+  // process's bits; and the non-finite nodes over the ranks.
+  void book_share(const ShareReduction& ranks);
   // The last step's sums of each unit (each book's work, the damping), in unit order; in a share, zeros
   // for the units of other processes. What a split run adds over its ranks, order-free.
   std::span<const kernels::NodeStepResult> unit_sums() const { return unit_results_; }
@@ -56,6 +63,7 @@ class NodeIntegrationSystem : public System {
   std::vector<SolidBoundarySpec> conditions_;
   std::array<double, 3> gravity_;
   TimeFunction mass_damping_;
+  bool share_ = false;              // book_share books the step's sums
   bool damped_ = false;             // the damping is positive at some time: its dissipation is booked
   std::vector<double> prescribed_;  // 3 per condition, evaluated each step
   std::vector<kernels::NodeStepResult> unit_results_;  // one per sum unit, in node order

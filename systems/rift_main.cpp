@@ -104,14 +104,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  // A scene runs on one process, with threads; a job of several ranks would run it once per rank, each
-  // writing the same folder. Refused before anything is written, said once: rank 0 says it and ends the
-  // job with status 2; the others end with 0 so that mpirun does not cut rank 0 off before it has said it.
-  if (const rift::MpiRank job = rift::launched_rank(); job.size > 1 && !*info_cmd) {
+  // `rift run` splits a scene between the ranks of a job (docs/distributed.md); the other commands would
+  // run once per rank, each writing the same files. Refused before anything is written, said once: rank 0
+  // says it and ends the job with status 2; the others end with 0 so that mpirun does not cut rank 0 off
+  // before it has said it.
+  if (const rift::MpiRank job = rift::launched_rank(); job.size > 1 && !*info_cmd && !*run_cmd) {
     if (job.rank != 0) return 0;
     std::cerr << "rift: this is a job of " << job.size << " processes (mpirun -np " << job.size
-              << "), but a scene runs on one process, with threads: run `rift run SCENE --threads N` without "
-                 "mpirun. `rift partition SCENE --ranks "
+              << "); only `rift run` splits a scene between processes: run this command without mpirun. "
+                 "`rift partition SCENE --ranks "
               << job.size << "` shows how the scene would split across " << job.size << " ranks.\n";
     return 2;
   }

@@ -159,7 +159,7 @@ std::optional<std::string> SolidModel::check_health(const StepContext& after) {
   // 16 steps): often enough to stop a blow-up, which grows by a constant factor per step (1.6 per step
   // at 2 x the estimate on the wave bar), before it inverts tets or reaches infinity; and after the last
   // step, so that a run that went unstable near its end does not finish as if it were fine.
-  if (!share_ && (after.step % kObservedEvery == 0 || after.last)) return check_energy(after);
+  if ((!share_ || split_) && (after.step % kObservedEvery == 0 || after.last)) return check_energy(after);
   return std::nullopt;
 }
 

@@ -8,6 +8,7 @@
 // solid_model_setup.cpp (nodes, tets, materials, boundaries, force slots, mass), solid_model_joints.cpp
 // (joint table, joint materials, in-situ state, initial cracks, contact) and solid_model_output.cpp (fields,
 // metrics, logs).
+#include <functional>
 #include <memory>
 
 #include "engine/core/table.hpp"
@@ -39,6 +40,11 @@ struct SolidEnergies {
     return external_work - (kinetic + elastic + joint_stored + damping + fracture + break_release +
                             contact_stored + friction + contact_damping);
   }
+};
+
+struct SolidSplit;  // systems/solid_model_share.cpp
+struct SolidSplitDelete {
+  void operator()(SolidSplit* split) const;
 };
 
 class SolidModel : public Model {
@@ -88,6 +94,12 @@ class SolidModel : public Model {
   // until a run does so, the energy guard is off in a share. Before the step graph is built. Throws Error
   // for a scene with contact (its pairs are not split yet).
   void compute_only(const RankHalo& share);
+  // A split run (systems/solid_model_share.cpp): compute_only on the share, and after each graph the
+  // ghosts' exchange and the books and counts added over the ranks, so that every rank books one process's
+  // bits; rank 0 gathers the rows and the fracture log before it reads the store. Contact is refused.
+  void take_share(const SplitJob& job, std::span<const SplitDomain> domains) override;
+  void finish_share_step(const StepContext& ctx) override;
+  void gather_to_root() override;
 
  private:
   void build_nodes_and_tets(const DiscontinuousMesh& dm, const TetMesh& mesh);
@@ -107,6 +119,10 @@ class SolidModel : public Model {
   void build_contact(const TetMesh& mesh);
   void scale_masses();  // solid.mass_scaling_step: heavier nodes where the step is short, the per-node step
   std::optional<std::string> check_energy(const StepContext& after);
+  // The order-free sum of term(r) over rows [0, rows) of a table (kernels/reproducible_sum.hpp); in a
+  // split run over the rows this rank counts, added over the ranks: the same bits.
+  enum class Rows { nodes, tets, joints, events };
+  double total_over(Rows kind, size_t rows, const std::function<double(size_t)>& term) const;
 
   Store& store_;
   SolidSpec spec_;
@@ -124,6 +140,7 @@ class SolidModel : public Model {
   std::vector<uint8_t> zone_;      // 1 per tet: in the fracture zone, i.e. with nodes of its own
   std::vector<double> tet_steps_;  // 1 per tet: its stable step (exact in the zone, else h / c_p) [s]
   bool share_ = false;             // compute_only: one process's share of the solid
+  std::unique_ptr<SolidSplit, SolidSplitDelete> split_;  // take_share: the job's exchange, sums and gathers
   double largest_energy_ = 0.0,
          energy_floor_ = 0.0;  // largest energy scale seen so far, for the energy guard
   std::unique_ptr<SurfaceLoadSystem> loads_;

@@ -124,20 +124,23 @@ SolidEnergies SolidModel::energies() const {
   // The sums over rows are order-free (kernels/reproducible_sum.hpp), as the step's energy books are: the
   // same bits whichever process holds which rows.
   SolidEnergies e;
-  e.kinetic = kernels::reproducible_total(nodes.size(), [&](size_t n) {
+  e.kinetic = total_over(Rows::nodes, nodes.size(), [&](size_t n) {
     return 0.5 * m[n] * (v[3 * n] * v[3 * n] + v[3 * n + 1] * v[3 * n + 1] + v[3 * n + 2] * v[3 * n + 2]);
   });
-  e.elastic = kernels::reproducible_total(solid::tet::energy.read(store_));
+  const auto tet_energy = solid::tet::energy.read(store_);
+  e.elastic = total_over(Rows::tets, tet_energy.size(), [&](size_t t) { return tet_energy[t]; });
   const Table& book = store_.table(solid::energy_table);
   // Kinetic energy at t = 0 (an initial velocity) counts as work done before the run.
   e.external_work = solid::energy::external_work.read(book)[0] + solid::energy::kinetic0.read(book)[0];
   e.damping = solid::energy::damping.read(book)[0];
   if (store_.has(solid::joint_table)) {
-    e.joint_stored = kernels::reproducible_total(solid::joint::stored_energy.read(store_)) -
+    const auto stored = solid::joint::stored_energy.read(store_);
+    e.joint_stored = total_over(Rows::joints, stored.size(), [&](size_t j) { return stored[j]; }) -
                      solid::energy::joint_energy0.read(book)[0];
     // Work done on the joints that they do not store is what fracture (and the law's hysteresis) took,
-    // less what broken joints still held when they broke (summed in the log's order: deterministic).
-    for (double w : solid::event::released_energy.read(store_)) e.break_release += w;
+    // less what broken joints still held when they broke.
+    const auto released = solid::event::released_energy.read(store_);
+    e.break_release = total_over(Rows::events, released.size(), [&](size_t r) { return released[r]; });
     e.fracture = -solid::energy::joint_work.read(book)[0] - e.joint_stored - e.break_release;
   }
   if (contact_) {

@@ -1,8 +1,10 @@
 #include "systems/tet_force_system.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 
+#include "engine/distributed/share_reduction.hpp"
 #include "engine/schedule/parallel.hpp"
 #include "systems/solid_tables.hpp"
 
@@ -82,7 +84,7 @@ void TetForceSystem::run(const StepContext& ctx) {
   Tally total;
   for (const Tally& t : tallies_) total += t;
   book(total);
-  if (!handed_over_) book_damping(ctx);
+  if (!handed_over_ && !share_) book_damping(ctx);
 }
 
 void TetForceSystem::book(const Tally& tally) {
@@ -122,6 +124,32 @@ void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ran
   own_.set(kept);
   tallies_.assign(own_.blocks(), Tally{});
   handed_over_ = !ranges.empty();
+}
+
+void TetForceSystem::count_only(std::vector<int32_t> counted) {
+  counted_ = std::move(counted);
+  share_ = true;
+}
+
+// As book_damping, over the counted tets, with the grid and the sum taken over the ranks. The inverted
+// tets are added over the ranks as each saw them: a tet across a boundary, computed on each side, counts
+// once per side in the guard's message; the lowest index, and so whether the guard stops, are one process's.
+void TetForceSystem::book_share(const StepContext& ctx, const ShareReduction& ranks) {
+  double largest = largest_viscous_power_;
+  ranks.max({&largest, 1});
+  const std::span<const double> power = solid::tet::viscous_power.read(store_);
+  const kernels::ReproducibleGrid grid =
+      kernels::reproducible_grid(largest, static_cast<int64_t>(power.size()));
+  kernels::ReproducibleSum total;
+  for (int32_t e : counted_) total.add(power[size_t(e)], grid);
+  ranks.sum({&total, 1});
+  solid::energy::damping.in(store_)[0] += ctx.dt * total.value();
+  int64_t inverted[1] = {static_cast<int64_t>(inverted_)};
+  int64_t first[1] = {first_inverted_ < 0 ? INT64_MAX : first_inverted_};
+  ranks.sum(inverted);
+  ranks.min(first);
+  inverted_ = static_cast<size_t>(inverted[0]);
+  first_inverted_ = first[0] == INT64_MAX ? -1 : first[0];
 }
 
 void TetForceSystem::compute_only(std::span<const int32_t> tets) {

@@ -20,6 +20,8 @@
 
 namespace rift {
 
+class ShareReduction;
+
 class TetForceSystem : public System {
  public:
   // initial_stress: 6 per material (empty: none).
@@ -60,6 +62,13 @@ class TetForceSystem : public System {
   // From the next step on, run() computes only the tets of `tets` (ascending) that it has not handed over:
   // a process's share of a split run (engine/mesh/halo_plan.hpp). After hand_over.
   void compute_only(std::span<const int32_t> tets);
+  // A split run's share: from the next step on, the damping is not booked in the step (run() and the node
+  // pass leave it), but by book_share() after the graph, over the tets of `counted` (ascending: those this
+  // rank counts, each tet counted by one rank), on the grid of every rank's largest power, added exactly
+  // over the ranks; the inverted tets are added over the ranks too. Before the step graph is built.
+  void count_only(std::vector<int32_t> counted);
+  bool books_damping_in_step() const { return !share_; }
+  void book_share(const StepContext& ctx, const ShareReduction& ranks);
 
  private:
   Store& store_;
@@ -75,6 +84,8 @@ class TetForceSystem : public System {
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;
   double largest_viscous_power_ = 0.0;  // this step's
+  bool share_ = false;                  // count_only: a split run's share
+  std::vector<int32_t> counted_;
 };
 
 }  // namespace rift

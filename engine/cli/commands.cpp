@@ -19,10 +19,13 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "engine/core/error.hpp"
 #include "engine/core/folder_name.hpp"
 #include "engine/core/log.hpp"
+#include "engine/distributed/job_agreement.hpp"
+#include "engine/distributed/mpi_runtime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/partition_report.hpp"
 #include "engine/plot/run_plot.hpp"
@@ -85,8 +88,29 @@ static void print_run_report(const std::filesystem::path& out_dir) {
 }
 
 int run(const RunArgs& args, const WorldBuilder& build) {
-  init_logging(false, args.quiet);
-  auto scene = read_scene(args.scene);
+  // In a job of several ranks (mpirun), rank 0 speaks for the run: the others log errors only, and an
+  // error that is one rank's alone ends the whole job, since the others would wait for that rank.
+  const MpiRank job = launched_rank();
+  init_logging(false, args.quiet || job.rank != 0);
+  if (job.rank != 0) spdlog::set_level(spdlog::level::err);
+  const auto fail = [&](const Error& e, int status) {
+    if (job.size > 1 && !dynamic_cast<const JobError*>(&e)) {
+      std::cerr << "rift: rank " << job.rank << " of " << job.size << ": " << e.what()
+                << "\nrift: ending every rank of the job\n";
+      std::cerr.flush();
+      MPI_Abort(MPI_COMM_WORLD, status);
+    }
+    if (job.rank == 0) spdlog::error("{}", e.what());
+    return status;
+  };
+  std::optional<Scene> scene;
+  {
+    // The scene's errors are the same on every rank: rank 0 prints them.
+    std::ostringstream quiet;
+    std::streambuf* err = job.rank != 0 ? std::cerr.rdbuf(quiet.rdbuf()) : nullptr;
+    scene = read_scene(args.scene);
+    if (err) std::cerr.rdbuf(err);
+  }
   if (!scene) return 2;
   RunOptions options;
   options.out_dir = args.out_dir.empty() ? std::filesystem::path("rift-out") / safe_folder_name(scene->name)
@@ -104,13 +128,13 @@ int run(const RunArgs& args, const WorldBuilder& build) {
   try {
     sim = std::make_unique<RunLoop>(std::move(*scene), options, build);
   } catch (const Error& e) {
-    spdlog::error("{}", e.what());
-    return 2;
+    return fail(e, 2);
   }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   try {
     const RunResult r = sim->run();
+    if (job.rank != 0) return r.stop_reason == "signal" ? 130 : 0;
     std::cout << "output: " << options.out_dir.string() << "/: " << grid_files(options.out_dir)
               << "(open in ParaView; rift.xdmf holds every grid), summary.json, timeseries.csv\n";
     print_run_report(options.out_dir);
@@ -126,8 +150,7 @@ int run(const RunArgs& args, const WorldBuilder& build) {
       }
     return r.stop_reason == "signal" ? 130 : 0;
   } catch (const Error& e) {
-    spdlog::error("{}", e.what());
-    return 1;
+    return fail(e, 1);
   }
 }
 

@@ -37,34 +37,6 @@ void own_by_unit(std::vector<int32_t>& owner, std::span<const int32_t> node_unit
   }
 }
 
-// The part that owns each node: the part of the first tet that holds it (sets[0] are the tets), or its
-// unit's.
-std::vector<int32_t> node_owners(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
-                                 std::span<const ElementNodes> sets, std::span<const int32_t> node_units) {
-  if (parts < 1 || sets.empty()) throw Error("halo plan: needs at least one part and the tets");
-  const ElementNodes& tets = sets[0];
-  if (tets.width < 1 || tets.nodes.size() != tet_part.size() * size_t(tets.width))
-    throw Error(fmt::format("halo plan: {} parts given for {} of {} nodes each", tet_part.size(), tets.name,
-                            tets.width));
-  std::vector<int32_t> owner(size_t(nodes), -1);
-  for (size_t e = 0; e < tet_part.size(); ++e) {
-    if (tet_part[e] < 0 || tet_part[e] >= parts)
-      throw Error(
-          fmt::format("halo plan: {} {} is in part {}, not in [0, {})", tets.name, e, tet_part[e], parts));
-    for (int32_t c = 0; c < tets.width; ++c) {
-      const int32_t n = tets.nodes[e * size_t(tets.width) + size_t(c)];
-      if (n < 0 || n >= nodes)
-        throw Error(fmt::format("halo plan: {} {} has node {}, not in [0, {})", tets.name, e, n, nodes));
-      if (owner[size_t(n)] < 0) owner[size_t(n)] = tet_part[e];
-    }
-  }
-  const auto orphan = std::find(owner.begin(), owner.end(), -1);
-  if (orphan != owner.end())
-    throw Error(fmt::format("halo plan: node {} lies in none of the {}", orphan - owner.begin(), tets.name));
-  own_by_unit(owner, node_units);
-  return owner;
-}
-
 uint64_t pair_key(int32_t a, int32_t b) {
   return uint64_t(uint32_t(a)) << 32 | uint32_t(b);
 }
@@ -103,6 +75,47 @@ void sort_unique(std::vector<int32_t>& v) {
 }
 
 }  // namespace
+
+std::vector<int32_t> node_owners(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
+                                 std::span<const ElementNodes> sets, std::span<const int32_t> node_units) {
+  if (parts < 1 || sets.empty()) throw Error("halo plan: needs at least one part and the tets");
+  const ElementNodes& tets = sets[0];
+  if (tets.width < 1 || tets.nodes.size() != tet_part.size() * size_t(tets.width))
+    throw Error(fmt::format("halo plan: {} parts given for {} of {} nodes each", tet_part.size(), tets.name,
+                            tets.width));
+  std::vector<int32_t> owner(size_t(nodes), -1);
+  for (size_t e = 0; e < tet_part.size(); ++e) {
+    if (tet_part[e] < 0 || tet_part[e] >= parts)
+      throw Error(
+          fmt::format("halo plan: {} {} is in part {}, not in [0, {})", tets.name, e, tet_part[e], parts));
+    for (int32_t c = 0; c < tets.width; ++c) {
+      const int32_t n = tets.nodes[e * size_t(tets.width) + size_t(c)];
+      if (n < 0 || n >= nodes)
+        throw Error(fmt::format("halo plan: {} {} has node {}, not in [0, {})", tets.name, e, n, nodes));
+      if (owner[size_t(n)] < 0) owner[size_t(n)] = tet_part[e];
+    }
+  }
+  const auto orphan = std::find(owner.begin(), owner.end(), -1);
+  if (orphan != owner.end())
+    throw Error(fmt::format("halo plan: node {} lies in none of the {}", orphan - owner.begin(), tets.name));
+  own_by_unit(owner, node_units);
+  return owner;
+}
+
+std::vector<int32_t> element_owners(const ElementNodes& set, std::span<const int32_t> node_owner) {
+  if (set.width < 1 || set.nodes.size() % size_t(set.width) != 0)
+    throw Error(
+        fmt::format("halo plan: {} nodes for {} of {} nodes each", set.nodes.size(), set.name, set.width));
+  std::vector<int32_t> owner(set.nodes.size() / size_t(set.width));
+  for (size_t e = 0; e < owner.size(); ++e) {
+    const int32_t first = set.nodes[e * size_t(set.width)];
+    if (first < 0 || size_t(first) >= node_owner.size())
+      throw Error(
+          fmt::format("halo plan: {} {} has node {}, not in [0, {})", set.name, e, first, node_owner.size()));
+    owner[e] = node_owner[size_t(first)];
+  }
+  return owner;
+}
 
 HaloPlan plan_halo(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
                    std::span<const ElementNodes> sets, std::span<const int32_t> node_units) {

@@ -71,6 +71,16 @@ struct RankHalo {
   std::vector<std::vector<int32_t>> elements;  // per element set: the elements this part computes
 };
 
+// The part that owns each node by the rule above; `tet_part` and `node_units` as plan_halo's, the same
+// errors.
+std::vector<int32_t> node_owners(int32_t parts, std::span<const int32_t> tet_part, int32_t nodes,
+                                 std::span<const ElementNodes> sets,
+                                 std::span<const int32_t> node_units = {});
+// The part that counts each element of a set: the owner of its first node. Every part that computes an
+// element holds the same values for it, and this one part counts it where the ranks' results are combined
+// (sums over elements, the fracture log, rank 0's copy for outputs). Throws Error on a node out of range.
+std::vector<int32_t> element_owners(const ElementNodes& set, std::span<const int32_t> node_owner);
+
 // `tet_part` gives the part of each element of sets[0] (the tets); `node_units` as PartitionWork's. Throws
 // Error when a node lies in no tet, an element's node or a part is out of range, an element has more than
 // 16 nodes, or the units do not start at node 0 and ascend within the nodes.

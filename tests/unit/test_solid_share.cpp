@@ -96,8 +96,9 @@ void run_split(bool fused, int32_t parts, int threads) {
   for (int step = 0; step < 500; ++step) {
     one->step_once();
     for (auto& s : shares) s->step_once();
-    if (step % 50 == 49)  // every unit has one owner, whose sums are one process's
+    if (step % 50 == 49) {  // every unit has one owner, whose sums are one process's
       ASSERT_EQ(expect_unit_sums_match(*one, shares, halos, step), node_pass_of(*one).sum_units().size());
+    }
     // The exchange: each share's ghosts from their owners.
     for (int32_t r = 0; r < parts; ++r)
       for (size_t k = 0; k < halos[size_t(r)].neighbours.size(); ++k) {

@@ -61,15 +61,14 @@ RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
     job_size_ = job.size;
   }
   writes_ = options_.write_output && job_rank_ == 0;
-  const auto together = [this](auto&& step) { on_every_rank(step); };
   // Everything that can reject the input happens before the output folder is touched.
   if (writes_) buffer_log_messages();
   spdlog::info("scene '{}' ({}), hash {}", scene_.name,
                scene_.source_file.empty() ? "built-in" : scene_.source_file, scene_.hash);
-  together([&] { world_ = build(scene_); });
+  on_every_rank([&] { world_ = build(scene_); });
   spdlog::info("mesh ({:.2f} s): {}", world_->mesh_seconds, format_quality(world_->mesh_quality));
   for (const auto& m : world_->models) spdlog::info("model: {}", m->name());
-  if (split()) together([&] { split_between_ranks(); });
+  if (split()) on_every_rank([&] { split_between_ranks(); });
   graph_ = std::make_unique<StepGraph>(world_->systems(), options_.threads, world_->plan.graph_periods());
   spdlog::info("the step, as the composition root scripts it:\n{}", world_->plan.script());
   check_background_access();
@@ -83,15 +82,15 @@ RunLoop::RunLoop(Scene scene, RunOptions options, const WorldBuilder& build)
           "scene with the sequential coupling");
     graph_->check_access_against(&world_->store);
   }
-  together([&] { choose_dt(); });
-  together([&] {
+  on_every_rank([&] { choose_dt(); });
+  on_every_rank([&] {
     if (writes_ && !options_.restart_latest) refuse_or_clear_earlier_run();
   });
   if (options_.write_output)
     checkpoints_ = std::make_unique<CheckpointSet>(options_.out_dir, scene_.checkpoint.keep);
   // A restart reads what it continues (checkpoint, time series) before anything in the folder changes, so
   // a refused restart leaves the interrupted run's files as they were. Every rank of a job reads it.
-  if (options_.restart_latest) together([&] { restart_from_latest(); });
+  if (options_.restart_latest) on_every_rank([&] { restart_from_latest(); });
   if (writes_) {
     create_output_dir(options_.out_dir);
     open_log_file(options_.out_dir / "rift.log");

@@ -87,6 +87,7 @@ void JointForceSystem::compute_only(std::span<const int32_t> joints) {
 }
 
 namespace {
+// The integration points of `joints` whose damage history has left 0.
 int64_t damaged_points(std::span<const double> history, size_t points, std::span<const int32_t> joints) {
   int64_t n = 0;
   for (int32_t j : joints)
@@ -96,12 +97,8 @@ int64_t damaged_points(std::span<const double> history, size_t points, std::span
 }  // namespace
 
 void JointForceSystem::count_only(std::vector<int32_t> counted) {
-  const std::span<const double> history = solid::joint::d_max.read(store_);
-  const size_t joints = store_.table(solid::joint_table).size();
-  const size_t points = joints > 0 ? history.size() / joints : 0;
-  std::vector<int32_t> all(joints);
-  for (size_t j = 0; j < joints; ++j) all[j] = int32_t(j);
-  damaged_points_at_share_ = damaged_points(history, points, all);  // the store is whole at set-up
+  const std::span<const double> history = solid::joint::d_max.read(store_);  // whole at set-up
+  damaged_points_at_share_ = std::count_if(history.begin(), history.end(), [](double d) { return d > 0.0; });
   onsets_at_share_ = solid::joint_state::damage_onsets.read(store_)[0];
   counted_ = std::move(counted);
   share_ = true;

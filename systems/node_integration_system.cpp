@@ -112,47 +112,38 @@ void NodeIntegrationSystem::run(const StepContext& ctx) {
           unit_results_[first / kSumUnitNodes] =
               kernels::integrate_nodes(args, slots, first, std::min(end, first + kSumUnitNodes));
     });
-  if (!share_) book_totals();
+  if (!share_) book_totals(nullptr);
 }
 
-// The units' work and damping, each added order-free; the count of non-finite nodes is exact anyway.
-void NodeIntegrationSystem::book_totals() {
-  non_finite_ = 0;
-  for (const auto& u : unit_results_) non_finite_ += u.non_finite;
-  const size_t units = unit_results_.size();
-  Table& energy = store_.table(solid::energy_table);
-  bool booked[kNodeForceBooks] = {};
-  for (const NodeForceRouteEntry& e : kNodeForceRoute) {
-    const size_t b = static_cast<size_t>(e.book);
-    if (!uses(e) || booked[b]) continue;
-    booked[b] = true;
-    energy.span<double>(kBookWork[b])[0] +=
-        kernels::reproducible_total(units, [&](size_t u) { return unit_results_[u].work[b]; });
-  }
-  if (damped_)
-    solid::energy::damping.in(energy)[0] +=
-        kernels::reproducible_total(units, [&](size_t u) { return unit_results_[u].damping; });
-}
-
-void NodeIntegrationSystem::book_share(const ShareReduction& ranks) {
+// The units' work and damping, each added order-free (kernels/reproducible_sum.hpp: the largest term
+// gives the grid, then the sum on it), and the count of non-finite nodes. In a split run (ranks given) the
+// largest terms, the grid sums and the count are added over the ranks, exactly, so every rank books one
+// process's bits; a unit another rank integrates holds zeros here.
+void NodeIntegrationSystem::book_totals(const ShareReduction* ranks) {
   Table& energy = store_.table(solid::energy_table);
   const size_t units = unit_results_.size();
-  // The sums' slots: each book the route uses, then the damping (a slot stays 0 when unused).
-  constexpr size_t kDamping = kNodeForceBooks;
+  constexpr size_t kDamping = kNodeForceBooks;  // the sums' slots: each book, then the damping
+  const auto term = [&](size_t u, size_t b) {
+    return b == kDamping ? unit_results_[u].damping : unit_results_[u].work[b];
+  };
   double largest[kNodeForceBooks + 1] = {};
-  for (const auto& u : unit_results_) {  // skipped units hold zeros
-    for (size_t b = 0; b < kNodeForceBooks; ++b) largest[b] = std::max(largest[b], std::abs(u.work[b]));
-    largest[kDamping] = std::max(largest[kDamping], std::abs(u.damping));
+  int64_t non_finite[1] = {0};
+  for (size_t u = 0; u < units; ++u) {
+    for (size_t b = 0; b <= kNodeForceBooks; ++b) largest[b] = std::max(largest[b], std::abs(term(u, b)));
+    non_finite[0] += static_cast<int64_t>(unit_results_[u].non_finite);
   }
-  ranks.max(largest);
+  if (ranks) ranks->max(largest);
   kernels::ReproducibleSum sums[kNodeForceBooks + 1];
   for (size_t b = 0; b <= kNodeForceBooks; ++b) {
     const kernels::ReproducibleGrid grid =
         kernels::reproducible_grid(largest[b], static_cast<int64_t>(units));
-    for (size_t u = 0; u < units; ++u)
-      if (!skipped(u)) sums[b].add(b == kDamping ? unit_results_[u].damping : unit_results_[u].work[b], grid);
+    for (size_t u = 0; u < units; ++u) sums[b].add(term(u, b), grid);
   }
-  ranks.sum(sums);
+  if (ranks) {
+    ranks->sum(sums);
+    ranks->sum(non_finite);
+  }
+  non_finite_ = static_cast<size_t>(non_finite[0]);
   bool booked[kNodeForceBooks] = {};
   for (const NodeForceRouteEntry& e : kNodeForceRoute) {
     const size_t b = static_cast<size_t>(e.book);
@@ -161,11 +152,10 @@ void NodeIntegrationSystem::book_share(const ShareReduction& ranks) {
     energy.span<double>(kBookWork[b])[0] += sums[b].value();
   }
   if (damped_) solid::energy::damping.in(energy)[0] += sums[kDamping].value();
-  int64_t non_finite[1] = {0};
-  for (size_t u = 0; u < units; ++u)
-    if (!skipped(u)) non_finite[0] += static_cast<int64_t>(unit_results_[u].non_finite);
-  ranks.sum(non_finite);
-  non_finite_ = static_cast<size_t>(non_finite[0]);
+}
+
+void NodeIntegrationSystem::book_share(const ShareReduction& ranks) {
+  book_totals(&ranks);
 }
 
 void NodeIntegrationSystem::run_fused(const kernels::NodeIntegrationArgs& args,

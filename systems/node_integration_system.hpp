@@ -83,7 +83,7 @@ class NodeIntegrationSystem : public System {
     size_t node_begin, node_end, tet_begin, tet_end;  // tet_begin == tet_end: no tets
     size_t first_unit;
   };
-  void book_totals();
+  void book_totals(const ShareReduction* ranks);
   void run_fused(const kernels::NodeIntegrationArgs& args, const kernels::ForceSlots& slots,
                  const StepContext& ctx);
   bool build_face_table(const std::vector<Piece>& runs);

@@ -23,7 +23,7 @@ struct SolidSplit {
   ShareReduction ranks;
   HaloExchange positions, velocities;
   StoreGather gather;
-  std::vector<int32_t> node_owner, joint_owner;
+  std::vector<int32_t> joint_owner;
   std::vector<int32_t> owned, counted_tets, counted_joints;  // ascending
   size_t logged_at_setup = 0;                                // the fracture log's rows before the first step
 
@@ -37,11 +37,6 @@ std::vector<int32_t> rows_of(std::span<const int32_t> owner, int32_t rank) {
   for (size_t r = 0; r < owner.size(); ++r)
     if (owner[r] == rank) rows.push_back(int32_t(r));
   return rows;
-}
-
-template <size_t W>
-ElementNodes element_nodes(const char* name, std::span<const int32_t> nodes) {
-  return {name, int32_t(W), nodes};
 }
 
 }  // namespace
@@ -58,31 +53,22 @@ void SolidModel::take_share(const SplitJob& job, std::span<const SplitDomain> do
   if (d.node_owner.size() != nodes.size())
     throw Error("solid: the split's node owners do not cover the solid's nodes");
   const auto tet_owner =
-      element_owners(element_nodes<4>("tets", solid::tet::nodes.read(store_)), d.node_owner);
+      element_owners(ElementNodes{"tets", 4, solid::tet::nodes.read(store_)}, d.node_owner);
   const auto face_owner =
-      element_owners(element_nodes<3>("loaded faces", solid::face::nodes.read(store_)), d.node_owner);
+      element_owners(ElementNodes{"loaded faces", 3, solid::face::nodes.read(store_)}, d.node_owner);
   std::vector<int32_t> joint_owner;
   if (joint_forces_)
-    joint_owner = element_owners(element_nodes<6>("joints", solid::joint::nodes.read(store_)), d.node_owner);
+    joint_owner = element_owners(ElementNodes{"joints", 6, solid::joint::nodes.read(store_)}, d.node_owner);
   std::vector<RowOwners> rows{
       {solid::node_table, d.node_owner}, {solid::tet_table, tet_owner}, {solid::face_table, face_owner}};
   if (joint_forces_) rows.push_back({solid::joint_table, joint_owner});
-  split_.reset(new SolidSplit{job,
-                              ShareReduction(job.comm),
-                              HaloExchange(job.comm, d.share, 3),
-                              HaloExchange(job.comm, d.share, 3),
-                              StoreGather(job.comm, std::move(rows)),
-                              d.node_owner,
-                              std::move(joint_owner),
-                              d.share.owned,
-                              rows_of(tet_owner, job.rank),
-                              {},
-                              store_.table(solid::event_table).size()});
+  std::vector<int32_t> counted_joints = rows_of(joint_owner, job.rank);
+  split_.reset(new SolidSplit{job, ShareReduction(job.comm), HaloExchange(job.comm, d.share, 3),
+                              HaloExchange(job.comm, d.share, 3), StoreGather(job.comm, std::move(rows)),
+                              std::move(joint_owner), d.share.owned, rows_of(tet_owner, job.rank),
+                              std::move(counted_joints), store_.table(solid::event_table).size()});
   tet_forces_->count_only(split_->counted_tets);
-  if (joint_forces_) {
-    split_->counted_joints = rows_of(split_->joint_owner, job.rank);
-    joint_forces_->count_only(split_->counted_joints);
-  }
+  if (joint_forces_) joint_forces_->count_only(split_->counted_joints);
 }
 
 // The ghosts' positions and velocities first (the next step's forces read them), then the books in one

@@ -110,7 +110,15 @@ void TetForceSystem::book_damping(const StepContext& ctx) {
   });
   kernels::ReproducibleSum total;
   for (const auto& part : damping_parts_) total += part;
-  solid::energy::damping.in(store_)[0] += ctx.dt * total.value();
+  book_damping_power(ctx.dt, total.value());
+}
+
+// dt times the step's summed power, into the damping book, in one rounding (an explicit fused multiply-add):
+// left to the compiler, whether `damping += dt * power` is contracted depended on the code around it, and a
+// change elsewhere in the file moved the book's last bits.
+void TetForceSystem::book_damping_power(double dt, double power) {
+  double& damping = solid::energy::damping.in(store_)[0];
+  damping = std::fma(dt, power, damping);
 }
 
 void TetForceSystem::hand_over(const std::vector<std::pair<size_t, size_t>>& ranges) {
@@ -143,7 +151,7 @@ void TetForceSystem::book_share(const StepContext& ctx, const ShareReduction& ra
   kernels::ReproducibleSum total;
   for (int32_t e : counted_) total.add(power[size_t(e)], grid);
   ranks.sum({&total, 1});
-  solid::energy::damping.in(store_)[0] += ctx.dt * total.value();
+  book_damping_power(ctx.dt, total.value());
   int64_t inverted[1] = {static_cast<int64_t>(inverted_)};
   int64_t first[1] = {first_inverted_ < 0 ? INT64_MAX : first_inverted_};
   ranks.sum(inverted);

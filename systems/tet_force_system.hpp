@@ -84,7 +84,8 @@ class TetForceSystem : public System {
   size_t inverted_ = 0;
   int64_t first_inverted_ = -1;
   double largest_viscous_power_ = 0.0;  // this step's
-  bool share_ = false;                  // count_only: a split run's share
+  void book_damping_power(double dt, double power);
+  bool share_ = false;  // count_only: a split run's share
   std::vector<int32_t> counted_;
 };
 
